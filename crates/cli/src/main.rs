@@ -1,0 +1,2 @@
+//! The `argus` command (placeholder).
+fn main() {}

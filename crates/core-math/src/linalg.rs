@@ -1,0 +1,256 @@
+//! Cholesky-based algebra on small stack matrices.
+
+use nalgebra::{Cholesky, Const};
+
+use crate::{MathError, Matrix, Vector};
+
+/// Relative tolerance used to decide whether a matrix is symmetric.
+pub(crate) const SYMMETRY_TOL: f64 = 1e-9;
+
+/// Checks that every entry of `v` is finite.
+///
+/// # Errors
+/// [`MathError::NonFinite`] naming `what`.
+pub fn check_finite_vector<const N: usize>(
+    v: &Vector<N>,
+    what: &'static str,
+) -> Result<(), MathError> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(MathError::NonFinite { what })
+    }
+}
+
+/// Checks that every entry of `m` is finite.
+///
+/// # Errors
+/// [`MathError::NonFinite`] naming `what`.
+pub fn check_finite_matrix<const R: usize, const C: usize>(
+    m: &Matrix<R, C>,
+    what: &'static str,
+) -> Result<(), MathError> {
+    if m.iter().all(|x| x.is_finite()) {
+        Ok(())
+    } else {
+        Err(MathError::NonFinite { what })
+    }
+}
+
+/// Returns `(A + Aᵀ) / 2`.
+#[must_use]
+pub fn symmetrize<const N: usize>(a: &Matrix<N, N>) -> Matrix<N, N> {
+    (a + a.transpose()) * 0.5
+}
+
+/// Largest relative asymmetry `max |A - Aᵀ| / max |A|` (0 for the zero matrix).
+pub(crate) fn asymmetry<const N: usize>(a: &Matrix<N, N>) -> f64 {
+    let scale = a.amax();
+    if scale == 0.0 {
+        return 0.0;
+    }
+    (a - a.transpose()).amax() / scale
+}
+
+/// The Cholesky factor `A = L Lᵀ` of a symmetric positive-definite matrix, with
+/// the solves and determinants built on it.
+///
+/// Construction checks finiteness and symmetry, then positive definiteness
+/// (the factorisation itself fails otherwise).
+#[derive(Debug, Clone)]
+pub struct SpdFactor<const N: usize> {
+    chol: Cholesky<f64, Const<N>>,
+}
+
+impl<const N: usize> SpdFactor<N> {
+    /// Factors the symmetric positive-definite matrix `a`.
+    ///
+    /// # Errors
+    /// [`MathError::NonFinite`], [`MathError::NotSymmetric`] or
+    /// [`MathError::NotPositiveDefinite`], each naming `what`.
+    pub fn new(a: &Matrix<N, N>, what: &'static str) -> Result<Self, MathError> {
+        check_finite_matrix(a, what)?;
+        let asym = asymmetry(a);
+        if asym > SYMMETRY_TOL {
+            return Err(MathError::NotSymmetric {
+                what,
+                asymmetry: asym,
+            });
+        }
+        Self::new_symmetric(a, what)
+    }
+
+    /// Factors `a`, reading only its lower triangle (no symmetry check).
+    /// Use it where `a` is symmetric by construction.
+    ///
+    /// # Errors
+    /// [`MathError::NonFinite`] or [`MathError::NotPositiveDefinite`], naming `what`.
+    pub fn new_symmetric(a: &Matrix<N, N>, what: &'static str) -> Result<Self, MathError> {
+        check_finite_matrix(a, what)?;
+        let chol = Cholesky::new(*a).ok_or(MathError::NotPositiveDefinite { what })?;
+        // nalgebra accepts tiny positive pivots; reject factors that are not finite.
+        if chol.l_dirty().iter().any(|x| !x.is_finite()) {
+            return Err(MathError::NotPositiveDefinite { what });
+        }
+        Ok(Self { chol })
+    }
+
+    /// The lower-triangular factor `L`.
+    #[must_use]
+    pub fn l(&self) -> Matrix<N, N> {
+        self.chol.l()
+    }
+
+    /// Solves `A x = b`.
+    #[must_use]
+    pub fn solve_vector(&self, b: &Vector<N>) -> Vector<N> {
+        self.chol.solve(b)
+    }
+
+    /// Solves `A X = B` for a matrix right-hand side.
+    #[must_use]
+    pub fn solve_matrix<const C: usize>(&self, b: &Matrix<N, C>) -> Matrix<N, C> {
+        self.chol.solve(b)
+    }
+
+    /// The inverse `A⁻¹` (symmetrised).
+    #[must_use]
+    pub fn inverse(&self) -> Matrix<N, N> {
+        symmetrize(&self.chol.inverse())
+    }
+
+    /// `ln |A|`, computed as `2 Σ ln Lᵢᵢ` (no overflow or underflow of the determinant).
+    #[must_use]
+    pub fn log_det(&self) -> f64 {
+        let l = self.chol.l_dirty();
+        2.0 * (0..N).map(|i| l[(i, i)].ln()).sum::<f64>()
+    }
+
+    /// The squared Mahalanobis distance `vᵀ A⁻¹ v`, as `‖L⁻¹ v‖²`.
+    #[must_use]
+    pub fn mahalanobis_sq(&self, v: &Vector<N>) -> f64 {
+        let mut w = *v;
+        self.chol.l_dirty().solve_lower_triangular_mut(&mut w);
+        w.norm_squared()
+    }
+
+    /// The Gaussian log-density `ln N(v; 0, A) = −½ (vᵀA⁻¹v + ln|A| + N ln 2π)`.
+    #[must_use]
+    pub fn log_density(&self, v: &Vector<N>) -> f64 {
+        -0.5 * (self.mahalanobis_sq(v)
+            + self.log_det()
+            + N as f64 * (2.0 * std::f64::consts::PI).ln())
+    }
+}
+
+/// Gaussian log-likelihood of a residual `r` with covariance `s`:
+/// `−½ (rᵀS⁻¹r + ln|2πS|)`.
+///
+/// Note `|2πS|^{−½}`: the normaliser carries the square root (seed 000 eqs (5), (9)
+/// misprint it). Work in logs: likelihoods of many models are compared and multiplied.
+///
+/// # Errors
+/// As [`SpdFactor::new`] for `s`, and [`MathError::NonFinite`] for `r`.
+pub fn log_likelihood<const M: usize>(r: &Vector<M>, s: &Matrix<M, M>) -> Result<f64, MathError> {
+    check_finite_vector(r, "residual")?;
+    let f = SpdFactor::new(s, "innovation covariance")?;
+    Ok(f.log_density(r))
+}
+
+/// Joseph-form covariance update `(I − K H) P (I − K H)ᵀ + K R Kᵀ`, symmetrised.
+///
+/// Valid for any gain `K` (not only the optimal one) and keeps `P` positive
+/// semi-definite under round-off.
+#[must_use]
+#[allow(non_snake_case)]
+pub fn joseph_update<const N: usize, const M: usize>(
+    P: &Matrix<N, N>,
+    K: &Matrix<N, M>,
+    H: &Matrix<M, N>,
+    R: &Matrix<M, M>,
+) -> Matrix<N, N> {
+    let a = Matrix::<N, N>::identity() - K * H;
+    symmetrize(&(a * P * a.transpose() + K * R * K.transpose()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn spd3(seed: [f64; 9]) -> Matrix<3, 3> {
+        let a = Matrix::<3, 3>::from_row_slice(&seed);
+        a * a.transpose() + Matrix::<3, 3>::identity() * 0.5
+    }
+
+    #[test]
+    fn rejects_nan_asymmetric_and_indefinite() {
+        let mut a = Matrix::<2, 2>::identity();
+        a[(0, 1)] = f64::NAN;
+        assert!(matches!(
+            SpdFactor::new(&a, "A"),
+            Err(MathError::NonFinite { what: "A" })
+        ));
+        let b = Matrix::<2, 2>::new(1.0, 0.5, 0.0, 1.0);
+        assert!(matches!(
+            SpdFactor::new(&b, "B"),
+            Err(MathError::NotSymmetric { .. })
+        ));
+        let c = Matrix::<2, 2>::new(1.0, 2.0, 2.0, 1.0); // eigenvalues 3, −1
+        assert!(matches!(
+            SpdFactor::new(&c, "C"),
+            Err(MathError::NotPositiveDefinite { .. })
+        ));
+        let z = Matrix::<2, 2>::zeros();
+        assert!(SpdFactor::new(&z, "Z").is_err());
+    }
+
+    #[test]
+    fn log_likelihood_matches_closed_form_1d() {
+        // N(r; 0, s) = exp(-r²/2s)/sqrt(2πs): closed form.
+        let s = 4.0;
+        let r = 1.5;
+        let expect = -0.5 * r * r / s - 0.5 * (2.0 * std::f64::consts::PI * s).ln();
+        let got = log_likelihood(&Vector::<1>::new(r), &Matrix::<1, 1>::new(s)).unwrap();
+        assert!((got - expect).abs() < 1e-14);
+    }
+
+    #[test]
+    fn log_likelihood_does_not_underflow() {
+        // A residual of 100 sigma: the density underflows to 0 in linear space,
+        // the log stays finite (−5000 − ½ ln 2π).
+        let got = log_likelihood(&Vector::<1>::new(100.0), &Matrix::<1, 1>::new(1.0)).unwrap();
+        assert!(got.is_finite());
+        assert!((got - (-5000.0 - 0.5 * (2.0 * std::f64::consts::PI).ln())).abs() < 1e-9);
+    }
+
+    proptest! {
+        #[test]
+        fn solve_inverse_logdet_agree_with_nalgebra(seed in proptest::array::uniform9(-3.0f64..3.0)) {
+            let a = spd3(seed);
+            let f = SpdFactor::new(&symmetrize(&a), "A").unwrap();
+            let b = Vector::<3>::new(1.0, -2.0, 0.5);
+            let x = f.solve_vector(&b);
+            prop_assert!(((a * x) - b).amax() < 1e-8 * (1.0 + a.amax()));
+            let inv = f.inverse();
+            prop_assert!((a * inv - Matrix::<3, 3>::identity()).amax() < 1e-8 * (1.0 + a.amax()));
+            prop_assert!((f.log_det() - a.determinant().ln()).abs() < 1e-9 * (1.0 + a.determinant().ln().abs()));
+            let m = f.mahalanobis_sq(&b);
+            prop_assert!((m - b.dot(&x)).abs() < 1e-8 * (1.0 + m));
+        }
+
+        #[test]
+        fn joseph_equals_standard_at_optimal_gain(seed in proptest::array::uniform9(-3.0f64..3.0)) {
+            // Property: at K = P Hᵀ S⁻¹ the Joseph form equals P − K S Kᵀ.
+            let p = symmetrize(&spd3(seed));
+            let h = Matrix::<2, 3>::new(1.0, 0.0, 0.5, 0.0, 1.0, -0.25);
+            let r = Matrix::<2, 2>::new(0.7, 0.1, 0.1, 0.9);
+            let s = h * p * h.transpose() + r;
+            let sf = SpdFactor::new(&symmetrize(&s), "S").unwrap();
+            let k = sf.solve_matrix(&(h * p)).transpose();
+            let standard = p - k * s * k.transpose();
+            let joseph = joseph_update(&p, &k, &h, &r);
+            prop_assert!((standard - joseph).amax() < 1e-9 * (1.0 + p.amax()));
+        }
+    }
+}

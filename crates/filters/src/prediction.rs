@@ -1,0 +1,195 @@
+//! The measurement prediction computed once per step and the innovation of one plot.
+
+use argus_core_math::{
+    Gaussian, Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector, joseph_update,
+    unit_ball_volume,
+};
+use argus_sensors::MeasurementModel;
+
+use crate::FilterError;
+
+/// How the posterior covariance is computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CovarianceForm {
+    /// `P = P⁻ − K S Kᵀ` (seed 000 eq (4), corrected).
+    Standard,
+    /// `P = (I − K H) P⁻ (I − K H)ᵀ + K R Kᵀ`, robust to round-off. Falls back to
+    /// the standard form for filters without a measurement Jacobian (UKF).
+    #[default]
+    Joseph,
+}
+
+/// Everything about the predicted measurement that does not depend on the plot:
+/// computed once, then used for gating, likelihoods and updates.
+#[derive(Debug, Clone)]
+pub struct MeasurementPrediction<const N: usize, const M: usize> {
+    z_pred: Vector<M>,
+    s: Matrix<M, M>,
+    s_factor: SpdFactor<M>,
+    cross: Matrix<N, M>,
+    gain: Matrix<N, M>,
+    jacobian: Option<Matrix<M, N>>,
+    noise: Matrix<M, M>,
+    form: CovarianceForm,
+    log_det_s: f64,
+}
+
+/// The innovation of one plot against a [`MeasurementPrediction`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Innovation<const M: usize> {
+    /// The residual `ν = z − ẑ` (angles wrapped).
+    pub residual: Vector<M>,
+    /// The normalised innovation squared `νᵀ S⁻¹ ν`.
+    pub nis: f64,
+    /// The Gaussian log-likelihood `ln N(ν; 0, S)`.
+    pub log_likelihood: f64,
+}
+
+impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
+    /// Assembles a prediction from `ẑ`, `S`, the cross covariance `P_xz`, the
+    /// measurement Jacobian (when the filter has one, for the Joseph form) and `R`.
+    /// The gain `K = P_xz S⁻¹` is computed here.
+    ///
+    /// # Errors
+    /// [`FilterError::Math`] when a value is non-finite or `S` is not positive definite.
+    pub fn new(
+        z_pred: Vector<M>,
+        s: Matrix<M, M>,
+        cross: Matrix<N, M>,
+        jacobian: Option<Matrix<M, N>>,
+        noise: Matrix<M, M>,
+        form: CovarianceForm,
+    ) -> Result<Self, FilterError> {
+        check_finite_vector(&z_pred, "predicted measurement")?;
+        check_finite_matrix(&cross, "cross covariance")?;
+        let s = argus_core_math::symmetrize(&s);
+        let s_factor = SpdFactor::new_symmetric(&s, "innovation covariance S")?;
+        let gain = s_factor.solve_matrix(&cross.transpose()).transpose();
+        check_finite_matrix(&gain, "gain")?;
+        let log_det_s = s_factor.log_det();
+        Ok(Self {
+            z_pred,
+            s,
+            s_factor,
+            cross,
+            gain,
+            jacobian,
+            noise,
+            form,
+            log_det_s,
+        })
+    }
+
+    /// The predicted measurement `ẑ`.
+    #[must_use]
+    pub fn z_pred(&self) -> &Vector<M> {
+        &self.z_pred
+    }
+
+    /// The innovation covariance `S`.
+    #[must_use]
+    pub fn s(&self) -> &Matrix<M, M> {
+        &self.s
+    }
+
+    /// The Cholesky factor of `S`.
+    #[must_use]
+    pub fn s_factor(&self) -> &SpdFactor<M> {
+        &self.s_factor
+    }
+
+    /// The cross covariance `P_xz` (`P Hᵀ` for a linearised filter).
+    #[must_use]
+    pub fn cross(&self) -> &Matrix<N, M> {
+        &self.cross
+    }
+
+    /// The gain `K = P_xz S⁻¹`.
+    #[must_use]
+    pub fn gain(&self) -> &Matrix<N, M> {
+        &self.gain
+    }
+
+    /// The measurement Jacobian used, if the filter has one.
+    #[must_use]
+    pub fn jacobian(&self) -> Option<&Matrix<M, N>> {
+        self.jacobian.as_ref()
+    }
+
+    /// The measurement-noise covariance `R` used.
+    #[must_use]
+    pub fn noise(&self) -> &Matrix<M, M> {
+        &self.noise
+    }
+
+    /// `ln |S|`.
+    #[must_use]
+    pub fn log_det_s(&self) -> f64 {
+        self.log_det_s
+    }
+
+    /// The normalised innovation squared `νᵀ S⁻¹ ν` of a residual.
+    #[must_use]
+    pub fn nis(&self, residual: &Vector<M>) -> f64 {
+        self.s_factor.mahalanobis_sq(residual)
+    }
+
+    /// `ln N(ν; 0, S)` from the squared distance `d² = νᵀS⁻¹ν`: `−½(d² + ln|S| + M ln 2π)`.
+    #[must_use]
+    pub fn log_likelihood_from_nis(&self, nis: f64) -> f64 {
+        -0.5 * (nis + self.log_det_s + M as f64 * (2.0 * std::f64::consts::PI).ln())
+    }
+
+    /// The volume of the gate `νᵀ S⁻¹ ν ≤ γ`: `c_M γ^{M/2} |S|^{1/2}`.
+    #[must_use]
+    pub fn gate_volume(&self, gamma: f64) -> f64 {
+        unit_ball_volume(M) * gamma.powf(M as f64 / 2.0) * (0.5 * self.log_det_s).exp()
+    }
+
+    /// The innovation of plot `z` (residual through `meas`, wrapping angles).
+    ///
+    /// # Errors
+    /// [`FilterError::Math`] when `z` is not finite.
+    pub fn innovation<Me: MeasurementModel<N, M>>(
+        &self,
+        meas: &Me,
+        z: &Vector<M>,
+    ) -> Result<Innovation<M>, FilterError> {
+        check_finite_vector(z, "measurement")?;
+        let residual = meas.residual(z, &self.z_pred);
+        check_finite_vector(&residual, "residual")?;
+        let nis = self.nis(&residual);
+        Ok(Innovation {
+            residual,
+            nis,
+            log_likelihood: self.log_likelihood_from_nis(nis),
+        })
+    }
+
+    /// The posterior after a Kalman update with `residual`: `x = x⁻ + K ν`, and the
+    /// covariance in this prediction's [`CovarianceForm`].
+    ///
+    /// # Errors
+    /// [`FilterError::Math`] when the posterior is non-finite or not positive definite.
+    pub fn update(
+        &self,
+        predicted: &Gaussian<N>,
+        residual: &Vector<M>,
+    ) -> Result<Gaussian<N>, FilterError> {
+        check_finite_vector(residual, "residual")?;
+        let mean = predicted.mean() + self.gain * residual;
+        let cov = self.posterior_cov(predicted.cov());
+        Ok(Gaussian::from_symmetrized(mean, &cov)?)
+    }
+
+    /// The posterior covariance of an update with a plot (independent of the residual).
+    #[must_use]
+    pub fn posterior_cov(&self, prior_cov: &Matrix<N, N>) -> Matrix<N, N> {
+        match (self.form, self.jacobian.as_ref()) {
+            (CovarianceForm::Joseph, Some(h)) => {
+                joseph_update(prior_cov, &self.gain, h, &self.noise)
+            }
+            _ => prior_cov - self.gain * self.s * self.gain.transpose(),
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Cross-crate and reference-value tests for Argus live in `tests/tests/`.
