@@ -1,1 +1,152 @@
-fn main() {}
+//! Project automation for Argus.
+//!
+//! - `cargo xtask test`: `cargo fmt --all --check`, `cargo clippy --workspace --all-targets -- -D warnings`,
+//!   `cargo test --workspace` — the README's test command and what CI runs.
+//! - `cargo xtask bench [FILTER]`: runs the criterion benches and writes `docs/BENCHMARKS.md`
+//!   (bench, median, machine) from criterion's `estimates.json` files.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("test") => test(),
+        Some("bench") => bench(args.get(1).map(String::as_str)),
+        _ => Err("usage: cargo xtask <test | bench [FILTER]>".to_owned()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("xtask: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+}
+
+fn cargo(args: &[&str]) -> Result<(), String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_owned());
+    eprintln!("xtask: cargo {}", args.join(" "));
+    let status = Command::new(&cargo)
+        .args(args)
+        .current_dir(workspace_root())
+        .status()
+        .map_err(|e| format!("cannot run {cargo}: {e}"))?;
+    if status.success() { Ok(()) } else { Err(format!("`cargo {}` failed ({status})", args.join(" "))) }
+}
+
+fn test() -> Result<(), String> {
+    cargo(&["fmt", "--all", "--check"])?;
+    cargo(&["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"])?;
+    cargo(&["test", "--workspace"])
+}
+
+fn bench(filter: Option<&str>) -> Result<(), String> {
+    let mut args = vec!["bench", "-p", "argus-benches"];
+    if let Some(f) = filter {
+        args.extend(["--", f]);
+    }
+    cargo(&args)?;
+    let root = workspace_root();
+    let criterion_dir = std::env::var_os("CARGO_TARGET_DIR")
+        .map_or_else(|| root.join("target"), PathBuf::from)
+        .join("criterion");
+    let mut rows = Vec::new();
+    collect_estimates(&criterion_dir, &criterion_dir, &mut rows);
+    rows.sort_by(|a, b| a.0.cmp(&b.0));
+    let table = render(&rows, &machine());
+    let out = root.join("docs").join("BENCHMARKS.md");
+    std::fs::create_dir_all(root.join("docs")).map_err(|e| e.to_string())?;
+    std::fs::write(&out, table).map_err(|e| format!("cannot write {}: {e}", out.display()))?;
+    eprintln!("xtask: wrote {} ({} benches)", out.display(), rows.len());
+    Ok(())
+}
+
+/// Walks `target/criterion/**/new/estimates.json` and reads the median point estimate (ns).
+fn collect_estimates(base: &Path, dir: &Path, rows: &mut Vec<(String, f64)>) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for entry in entries.flatten() {
+        let path = entry.path();
+        if !path.is_dir() {
+            continue;
+        }
+        if path.file_name().is_some_and(|n| n == "new") {
+            let est = path.join("estimates.json");
+            if let (Ok(text), Some(parent)) = (std::fs::read_to_string(&est), path.parent()) {
+                if let Some(median) = median_ns(&text) {
+                    let name = parent.strip_prefix(base).unwrap_or(parent).to_string_lossy().replace('\\', "/");
+                    rows.push((name, median));
+                }
+            }
+        } else if path.file_name().is_none_or(|n| n != "report" && n != "base" && n != "change") {
+            collect_estimates(base, &path, rows);
+        }
+    }
+}
+
+/// Extracts `"median":{"confidence_interval":{...},"point_estimate":X` without a JSON crate.
+fn median_ns(json: &str) -> Option<f64> {
+    let start = json.find("\"median\"")?;
+    let rest = &json[start..];
+    let pe = rest.find("\"point_estimate\":")?;
+    let num = &rest[pe + "\"point_estimate\":".len()..];
+    let end = num.find([',', '}'])?;
+    num[..end].trim().parse().ok()
+}
+
+fn human(ns: f64) -> String {
+    if ns < 1e3 {
+        format!("{ns:.1} ns")
+    } else if ns < 1e6 {
+        format!("{:.2} µs", ns / 1e3)
+    } else if ns < 1e9 {
+        format!("{:.2} ms", ns / 1e6)
+    } else {
+        format!("{:.2} s", ns / 1e9)
+    }
+}
+
+fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_owned()))
+        .unwrap_or_else(|| "unknown CPU".to_owned());
+    let cores = std::thread::available_parallelism().map_or(0, std::num::NonZero::get);
+    let rustc = Command::new("rustc")
+        .arg("--version")
+        .output()
+        .ok()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_owned())
+        .unwrap_or_default();
+    format!("{cpu}, {cores} cores, {} {}, {rustc}", std::env::consts::OS, std::env::consts::ARCH)
+}
+
+fn render(rows: &[(String, f64)], machine: &str) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# Benchmarks\n");
+    let _ = writeln!(s, "Written by `cargo xtask bench` from criterion's median estimates. Do not edit by hand.\n");
+    let _ = writeln!(s, "Machine: {machine}\n");
+    let _ = writeln!(s, "| bench | median |\n|---|---|");
+    for (name, ns) in rows {
+        let _ = writeln!(s, "| `{name}` | {} |", human(*ns));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_criterion_median() {
+        let json = r#"{"mean":{"confidence_interval":{"confidence_level":0.95,"lower_bound":1.0,"upper_bound":2.0},"point_estimate":1.5,"standard_error":0.1},"median":{"confidence_interval":{"confidence_level":0.95,"lower_bound":100.0,"upper_bound":130.0},"point_estimate":123.25,"standard_error":0.1}}"#;
+        assert_eq!(median_ns(json).map(f64::to_bits), Some(123.25f64.to_bits()));
+        assert_eq!(human(123.25), "123.2 ns");
+        assert_eq!(human(1500.0), "1.50 µs");
+    }
+}
