@@ -9,12 +9,37 @@
 //!
 //! A failed step returns a typed [`FilterError`] and leaves the estimate passed
 //! in untouched (it is borrowed, never mutated).
+//!
+//! - [`Kf`]: linear Kalman filter, standard or Joseph covariance update.
+//! - [`Ekf`]: extended Kalman filter; [`SecondOrderEkf`]: truncated second-order EKF.
+//! - [`CdEkf`]: continuous–discrete EKF (RK4 moment equations, optional second order).
+//! - [`Ukf`]: unscented Kalman filter (scaled unscented transform, allocation-free).
+//! - [`two_point_cv1`], [`two_point_cv2`], [`two_point_cv3`]: two-point initiation.
+//! - [`nees`], [`ChiSquareAverage`]: NEES/NIS consistency with chi-square bounds.
 
+mod cd_ekf;
+mod consistency;
+mod ekf;
 mod error;
+mod init;
+mod kf;
+mod linearized;
 mod prediction;
+mod second_order;
+mod ukf;
 
+#[cfg(test)]
+mod test_models;
+
+pub use cd_ekf::{CdEkf, MAX_SUBSTEPS};
+pub use consistency::{ChiSquareAverage, nees};
+pub use ekf::{Ekf, SecondOrderEkf};
 pub use error::{FilterError, check_dt};
+pub use init::{two_point_cv1, two_point_cv2, two_point_cv3};
+pub use kf::Kf;
 pub use prediction::{CovarianceForm, Innovation, MeasurementPrediction};
+pub use second_order::second_order_terms;
+pub use ukf::{Ukf, UtParams};
 
 use argus_core_math::{Gaussian, Vector};
 use argus_sensors::MeasurementModel;

@@ -179,7 +179,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
         check_finite_vector(residual, "residual")?;
         let mean = predicted.mean() + self.gain * residual;
         let cov = self.posterior_cov(predicted.cov());
-        Ok(Gaussian::from_symmetrized(mean, &cov)?)
+        crate::linearized::checked_gaussian(mean, &cov, "posterior mean", "posterior covariance")
     }
 
     /// The posterior covariance of an update with a plot (independent of the residual).

@@ -1,0 +1,279 @@
+//! The linear Kalman filter.
+
+use argus_core_math::Gaussian;
+use argus_motion_models::LinearMotionModel;
+use argus_sensors::MeasurementModel;
+
+use crate::linearized::{first_order_measurement, linear_covariance_predict};
+use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction, check_dt};
+
+/// The Kalman filter on a linear motion model.
+///
+/// Prediction `x⁻ = F x`, `P⁻ = F P Fᵀ + Q` (with `F = F(dt)`, `Q = Q(x̂, dt)`);
+/// measurement prediction `ẑ = h(x⁻)`, `S = H P⁻ Hᵀ + R`, `K = P⁻ Hᵀ S⁻¹` with
+/// `H = ∂h/∂x`; update `x = x⁻ + K ν` and `P` in the chosen [`CovarianceForm`]
+/// (Joseph by default). With a linear measurement (`h(x) = H x`) this is the
+/// exact Kalman filter; a nonlinear sensor is linearised at `x⁻` (use [`crate::Ekf`]
+/// to say so in the type).
+///
+/// # References
+/// Seed 002 eqs (1)–(10); seed 000 eq (4) (corrected: `P = P⁻ − K S Kᵀ`);
+/// Bar-Shalom, Li & Kirubarajan (2001) §5.2.
+///
+/// # Example
+/// ```
+/// use argus_core_math::{Gaussian, Matrix, Vector};
+/// use argus_filters::{GaussianFilter, Kf};
+/// use argus_motion_models::{LinearMotionModel, MotionModel};
+/// use argus_sensors::MeasurementModel;
+///
+/// /// A 1-D random walk `x(t + dt) = x(t) + w`, `Var w = q dt`.
+/// struct Walk(f64);
+/// impl MotionModel<1> for Walk {
+///     fn propagate(&self, x: &Vector<1>, _dt: f64) -> Vector<1> { *x }
+///     fn jacobian(&self, _x: &Vector<1>, _dt: f64) -> Matrix<1, 1> { Matrix::identity() }
+///     fn process_noise(&self, _x: &Vector<1>, dt: f64) -> Matrix<1, 1> {
+///         Matrix::<1, 1>::new(self.0 * dt)
+///     }
+/// }
+/// impl LinearMotionModel<1> for Walk {
+///     fn transition(&self, _dt: f64) -> Matrix<1, 1> { Matrix::identity() }
+/// }
+/// /// Direct observation with variance 1.
+/// struct Direct;
+/// impl MeasurementModel<1, 1> for Direct {
+///     fn predict(&self, x: &Vector<1>) -> Vector<1> { *x }
+///     fn jacobian(&self, _x: &Vector<1>) -> Matrix<1, 1> { Matrix::identity() }
+///     fn noise(&self, _x: &Vector<1>) -> Matrix<1, 1> { Matrix::identity() }
+/// }
+///
+/// let kf = Kf::new(Walk(1.0));
+/// let prior = Gaussian::new(Vector::<1>::new(0.0), Matrix::<1, 1>::new(1.0))?;
+/// let pred = kf.predict(&prior, 1.0)?; // P⁻ = 1 + 1 = 2
+/// let (post, innov) = kf.update(&pred, &Direct, &Vector::<1>::new(3.0))?;
+/// // K = 2 / (2 + 1) = 2/3: x = 2, P = 2/3, NIS = 9 / 3 = 3.
+/// assert!((post.mean()[0] - 2.0).abs() < 1e-12);
+/// assert!((post.cov()[(0, 0)] - 2.0 / 3.0).abs() < 1e-12);
+/// assert!((innov.nis - 3.0).abs() < 1e-12);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Kf<Mo> {
+    model: Mo,
+    form: CovarianceForm,
+}
+
+impl<Mo> Kf<Mo> {
+    /// A Kalman filter on `model` with the Joseph-form covariance update.
+    #[must_use]
+    pub fn new(model: Mo) -> Self {
+        Self::with_form(model, CovarianceForm::default())
+    }
+
+    /// A Kalman filter on `model` with the given covariance update form.
+    #[must_use]
+    pub fn with_form(model: Mo, form: CovarianceForm) -> Self {
+        Self { model, form }
+    }
+
+    /// The motion model.
+    #[must_use]
+    pub fn model(&self) -> &Mo {
+        &self.model
+    }
+
+    /// The covariance update form.
+    #[must_use]
+    pub fn form(&self) -> CovarianceForm {
+        self.form
+    }
+}
+
+impl<const N: usize, Mo: LinearMotionModel<N>> GaussianFilter<N> for Kf<Mo> {
+    /// `x⁻ = F(dt) x`, `P⁻ = F P Fᵀ + Q(x̂, dt)`.
+    ///
+    /// # Errors
+    /// [`FilterError::InvalidInterval`] for `dt` not finite and positive;
+    /// [`FilterError::Math`] when `F`, `Q` or the result is non-finite or `P⁻` is
+    /// not positive definite.
+    #[allow(non_snake_case)]
+    fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
+        check_dt(dt)?;
+        let F = self.model.transition(dt);
+        let Q = self.model.process_noise(prior.mean(), dt);
+        linear_covariance_predict(F * prior.mean(), prior.cov(), &F, &Q)
+    }
+
+    /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.
+    ///
+    /// # Errors
+    /// [`FilterError::Math`] when a value is non-finite or `S` is not positive definite.
+    fn predict_measurement<const M: usize, Me: MeasurementModel<N, M>>(
+        &self,
+        predicted: &Gaussian<N>,
+        meas: &Me,
+    ) -> Result<MeasurementPrediction<N, M>, FilterError> {
+        first_order_measurement(predicted, meas, self.form)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_models::{Cv1Dwna, Cv2, Pos1, Pos2};
+    use argus_core_math::{MathError, Matrix, Vector};
+
+    fn kalata(lambda: f64) -> (f64, f64) {
+        let root = (lambda * lambda + 8.0 * lambda).sqrt();
+        let alpha = -(lambda * lambda + 8.0 * lambda - (lambda + 4.0) * root) / 8.0;
+        let beta = (lambda * lambda + 4.0 * lambda - lambda * root) / 4.0;
+        (alpha, beta)
+    }
+
+    #[test]
+    fn converges_to_kalata_alpha_beta_gains() {
+        // Kalata (1984); Bar-Shalom, Li & Kirubarajan (2001) §6.5: the steady-state
+        // gain of the 1-D CV filter with DWNA noise is [α, β/T] with
+        // λ = σ_v T² / σ_w. The covariance recursion does not depend on the plots.
+        for &(lambda, t) in &[(0.05, 1.0), (0.3, 2.0), (1.0, 0.5), (3.0, 1.0), (10.0, 5.0)] {
+            let sigma_w = 2.0;
+            let sigma_v = lambda * sigma_w / (t * t);
+            for form in [CovarianceForm::Joseph, CovarianceForm::Standard] {
+                let kf = Kf::with_form(Cv1Dwna { sigma_v }, form);
+                let meas = Pos1 {
+                    r: sigma_w * sigma_w,
+                };
+                let mut est =
+                    Gaussian::new(Vector::<2>::zeros(), Matrix::<2, 2>::identity() * 1e4).unwrap();
+                let mut gain = Matrix::<2, 1>::zeros();
+                for _ in 0..3000 {
+                    let pred = kf.predict(&est, t).unwrap();
+                    let mp = kf.predict_measurement(&pred, &meas).unwrap();
+                    gain = *mp.gain();
+                    est = mp.update(&pred, &Vector::<1>::zeros()).unwrap();
+                }
+                let (alpha, beta) = kalata(lambda);
+                // Tolerance: round-off of a converged recursion (derived values are exact).
+                assert!(
+                    (gain[0] - alpha).abs() < 1e-9,
+                    "λ={lambda}: α {} vs {alpha}",
+                    gain[0]
+                );
+                assert!(
+                    (gain[1] - beta / t).abs() < 1e-9 / t,
+                    "λ={lambda}: β/T {} vs {}",
+                    gain[1],
+                    beta / t
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn joseph_equals_standard_at_optimal_gain() {
+        // Identity: at K = P Hᵀ S⁻¹ both forms give P − K S Kᵀ.
+        let prior = Gaussian::new(
+            Vector::<4>::new(100.0, 5.0, -50.0, 2.0),
+            Matrix::<4, 4>::from_diagonal(&Vector::<4>::new(400.0, 25.0, 300.0, 16.0)),
+        )
+        .unwrap();
+        let meas = Pos2 {
+            r: Matrix::<2, 2>::new(100.0, 30.0, 30.0, 60.0),
+        };
+        let z = Vector::<2>::new(120.0, -40.0);
+        let a = Kf::with_form(Cv2 { q: 1.0 }, CovarianceForm::Joseph);
+        let b = Kf::with_form(Cv2 { q: 1.0 }, CovarianceForm::Standard);
+        let (pa, _) = a
+            .update(&a.predict(&prior, 2.0).unwrap(), &meas, &z)
+            .unwrap();
+        let (pb, _) = b
+            .update(&b.predict(&prior, 2.0).unwrap(), &meas, &z)
+            .unwrap();
+        assert!((pa.cov() - pb.cov()).amax() < 1e-9 * pa.cov().amax());
+        assert!((pa.mean() - pb.mean()).amax() < 1e-9);
+    }
+
+    #[test]
+    fn one_step_matches_hand_computation() {
+        // 1-D CV, T = 1, σ_v = 1: Q = [[1/4, 1/2], [1/2, 1]]; P₀ = I:
+        // P⁻ = F P Fᵀ + Q = [[2.25, 1.5], [1.5, 2]]; with r = 1: S = 3.25,
+        // K = [2.25, 1.5]/3.25; z = 1 from x⁻ = 0: x = K.
+        let kf = Kf::new(Cv1Dwna { sigma_v: 1.0 });
+        let prior = Gaussian::new(Vector::<2>::zeros(), Matrix::<2, 2>::identity()).unwrap();
+        let pred = kf.predict(&prior, 1.0).unwrap();
+        assert!((pred.cov() - Matrix::<2, 2>::new(2.25, 1.5, 1.5, 2.0)).amax() < 1e-14);
+        let (post, innov) = kf
+            .update(&pred, &Pos1 { r: 1.0 }, &Vector::<1>::new(1.0))
+            .unwrap();
+        assert!((post.mean() - Vector::<2>::new(2.25, 1.5) / 3.25).amax() < 1e-14);
+        assert!((innov.nis - 1.0 / 3.25).abs() < 1e-14);
+        let p11 = 2.25 - 2.25 * 2.25 / 3.25;
+        assert!((post.cov()[(0, 0)] - p11).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rejects_bad_interval_and_plot() {
+        let kf = Kf::new(Cv1Dwna { sigma_v: 1.0 });
+        let prior = Gaussian::new(Vector::<2>::zeros(), Matrix::<2, 2>::identity()).unwrap();
+        for dt in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(matches!(
+                kf.predict(&prior, dt),
+                Err(FilterError::InvalidInterval { .. })
+            ));
+        }
+        let z = Vector::<1>::new(f64::NAN);
+        assert_eq!(
+            kf.update(&prior, &Pos1 { r: 1.0 }, &z).unwrap_err(),
+            FilterError::Math(MathError::NonFinite {
+                what: "measurement"
+            })
+        );
+    }
+
+    #[test]
+    fn non_pd_noise_making_s_singular_is_reported() {
+        // R = −H P Hᵀ makes S = 0.
+        let kf = Kf::new(Cv1Dwna { sigma_v: 1.0 });
+        let prior = Gaussian::new(Vector::<2>::zeros(), Matrix::<2, 2>::identity() * 2.0).unwrap();
+        let err = kf
+            .predict_measurement(&prior, &Pos1 { r: -2.0 })
+            .unwrap_err();
+        assert_eq!(
+            err,
+            FilterError::Math(MathError::NotPositiveDefinite {
+                what: "innovation covariance S"
+            })
+        );
+        let err = kf
+            .predict_measurement(&prior, &Pos1 { r: f64::NAN })
+            .unwrap_err();
+        assert_eq!(
+            err,
+            FilterError::Math(MathError::NonFinite {
+                what: "measurement noise R"
+            })
+        );
+    }
+
+    #[test]
+    fn non_finite_or_indefinite_process_noise_is_reported() {
+        let prior = Gaussian::new(Vector::<2>::zeros(), Matrix::<2, 2>::identity()).unwrap();
+        let err = Kf::new(Cv1Dwna { sigma_v: f64::NAN })
+            .predict(&prior, 1.0)
+            .unwrap_err();
+        assert_eq!(
+            err,
+            FilterError::Math(MathError::NonFinite {
+                what: "process noise Q"
+            })
+        );
+        // An overflowing step: F P Fᵀ is infinite.
+        let err = Kf::new(Cv1Dwna { sigma_v: 1.0 })
+            .predict(&prior, 1e300)
+            .unwrap_err();
+        assert!(
+            matches!(err, FilterError::Math(MathError::NonFinite { .. })),
+            "{err:?}"
+        );
+    }
+}

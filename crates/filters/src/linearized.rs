@@ -1,0 +1,67 @@
+//! Helpers shared by the linearised filters (KF, EKF, second-order EKF, CD-EKF).
+
+use argus_core_math::{
+    Gaussian, MathError, Matrix, Vector, check_finite_matrix, check_finite_vector,
+};
+use argus_sensors::MeasurementModel;
+
+use crate::{CovarianceForm, FilterError, MeasurementPrediction};
+
+/// Builds an estimate from a filter stage's mean and covariance, naming the stage
+/// in the error (`what_mean`, `what_cov`) when a value is non-finite or the
+/// covariance is not positive definite.
+pub(crate) fn checked_gaussian<const N: usize>(
+    mean: Vector<N>,
+    cov: &Matrix<N, N>,
+    what_mean: &'static str,
+    what_cov: &'static str,
+) -> Result<Gaussian<N>, FilterError> {
+    check_finite_vector(&mean, what_mean)?;
+    check_finite_matrix(cov, what_cov)?;
+    Gaussian::from_symmetrized(mean, cov).map_err(|e| match e {
+        MathError::NotPositiveDefinite { .. } => {
+            FilterError::Math(MathError::NotPositiveDefinite { what: what_cov })
+        }
+        MathError::NonFinite { .. } => FilterError::Math(MathError::NonFinite { what: what_cov }),
+        other => FilterError::Math(other),
+    })
+}
+
+/// The linearised prediction `x⁻ = f`, `P⁻ = F P Fᵀ + Q` from a propagated mean,
+/// the transition (or Jacobian) `F` and the process noise `Q`.
+#[allow(non_snake_case)]
+pub(crate) fn linear_covariance_predict<const N: usize>(
+    mean: Vector<N>,
+    P: &Matrix<N, N>,
+    F: &Matrix<N, N>,
+    Q: &Matrix<N, N>,
+) -> Result<Gaussian<N>, FilterError> {
+    check_finite_matrix(F, "transition matrix F")?;
+    check_finite_matrix(Q, "process noise Q")?;
+    let cov = F * P * F.transpose() + Q;
+    checked_gaussian(mean, &cov, "predicted mean", "predicted covariance")
+}
+
+/// The first-order measurement prediction at the predicted mean:
+/// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.
+/// For a linear measurement `h(x) = H x` this is the Kalman filter's.
+#[allow(non_snake_case)]
+pub(crate) fn first_order_measurement<const N: usize, const M: usize, Me>(
+    predicted: &Gaussian<N>,
+    meas: &Me,
+    form: CovarianceForm,
+) -> Result<MeasurementPrediction<N, M>, FilterError>
+where
+    Me: MeasurementModel<N, M>,
+{
+    let x = predicted.mean();
+    let P = predicted.cov();
+    let z_pred = meas.predict(x);
+    let H = meas.jacobian(x);
+    let R = meas.noise(x);
+    check_finite_matrix(&H, "measurement Jacobian H")?;
+    check_finite_matrix(&R, "measurement noise R")?;
+    let PHt = P * H.transpose();
+    let S = H * PHt + R;
+    MeasurementPrediction::new(z_pred, S, PHt, Some(H), R, form)
+}
