@@ -1,6 +1,56 @@
-//! Interacting multiple model (IMM) estimation — **not built yet**.
+//! Interacting multiple model (IMM) estimation and the multi-IMM measurement-noise
+//! estimator of seed 000 (Jeon et al., 2010).
 //!
-//! This crate will hold the IMM of seed 000 (mixing with the spread-of-means term,
-//! log-space mode probabilities, combination) over any set of mode-matched
-//! filters from `argus-filters`, and the multi-IMM measurement-noise estimator
-//! of seed 000 eqs (8)–(14). It exports nothing yet.
+//! - [`Imm`]: an IMM over `R` mode-matched filters (any [`argus_filters::GaussianFilter`])
+//!   sharing an `N`-state: mixing with the spread-of-means term, mode probabilities in log
+//!   space, combination; the interval is an argument of every cycle. [`MarkovMatrix`]
+//!   validates the transition matrix; [`Embedded`] lifts a smaller model into the common state.
+//! - [`MultiImm`]: the estimator of seed 000 eqs (8)–(14): `K` IMMs differing only in the
+//!   assumed range/azimuth variances, per-step noise-mode probabilities with a uniform prior,
+//!   reference update, `±p` grid and per-step clip, all parameters ([`NoiseGrid`]), with an
+//!   independent range/azimuth grid as an option.
+//! - [`VariationalNoiseImm`]: beyond the paper, one IMM plus a variational-Bayes recursion
+//!   for range and azimuth variances whose fixed point is the true noise.
+//! - Polar plots are converted with the unbiased conversion ([`unbiased_conversion`],
+//!   [`UnbiasedConversion`]) using each hypothesis' own variances.
+//!
+//! Nothing allocates per step: estimates are arrays of stack Gaussians
+//! (`[ImmEstimate<N, R>; K]` for the multi-IMM, i.e. 15 stack filters for the paper's 5 × 3).
+//!
+//! # Example
+//! ```
+//! use argus_imm::{MarkovMatrix, NoiseGrid, NoiseVariances};
+//!
+//! // Seed 000 eq (20) and the paper's grid (eq 14, p = 0.1).
+//! let pi = MarkovMatrix::new([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]])?;
+//! let grid = NoiseGrid::<5>::common(0.1)?;
+//! assert!((grid.factors()[0][0] - 0.8).abs() < 1e-12);
+//! let truth = NoiseVariances::from_sigmas(70.0, 0.08_f64.to_radians())?;
+//! assert!((truth.range() - 4900.0).abs() < 1e-9);
+//! # let _ = pi;
+//! # Ok::<(), argus_imm::ImmError>(())
+//! ```
+
+mod embed;
+mod error;
+mod imm;
+mod markov;
+mod multi;
+mod polar;
+mod variational;
+
+#[cfg(test)]
+mod test_support;
+#[cfg(test)]
+mod tests;
+
+pub use embed::Embedded;
+pub use error::ImmError;
+pub use imm::{Imm, ImmEstimate, ImmPrediction, ImmUpdate, moment_match};
+pub use markov::{MarkovMatrix, PROBABILITY_SUM_TOL, log_probabilities, log_sum_exp};
+pub use multi::{MultiImm, MultiImmEstimate, MultiImmUpdate, NoiseGrid};
+pub use polar::{
+    NoiseVariances, PlotConversion, PolarPlot, PositionMeasurement, UnbiasedConversion,
+    unbiased_conversion,
+};
+pub use variational::{VariationalEstimate, VariationalNoiseImm};

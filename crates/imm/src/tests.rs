@@ -1,0 +1,381 @@
+//! Crate tests: the IMM against a plain Kalman filter and hand-computed probabilities,
+//! log-space robustness, bad input, and Monte Carlo checks on the gimpo scenario.
+#![allow(clippy::unwrap_used, clippy::expect_used, non_snake_case)]
+
+use argus_core_math::{Gaussian, Matrix, Vector};
+use argus_filters::GaussianFilter;
+use argus_motion_models::MotionModel;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use crate::test_support::{Kf, Motion, beam_times, paper_imm, plots, truth_at, two_point};
+use crate::*;
+
+fn meas(r: f64) -> PositionMeasurement<4> {
+    PositionMeasurement::new(0, 2, Matrix::<2, 2>::identity() * r).unwrap()
+}
+
+fn start() -> Gaussian<4> {
+    Gaussian::new(
+        Vector::<4>::new(100.0, 10.0, -50.0, 5.0),
+        Matrix::<4, 4>::from_diagonal(&Vector::<4>::new(400.0, 25.0, 400.0, 25.0)),
+    )
+    .unwrap()
+}
+
+#[test]
+fn single_mode_imm_is_the_kalman_filter() {
+    // With one mode and Π = [1] the IMM reduces to its filter exactly, and ln Λ is the
+    // filter's innovation log-likelihood.
+    let f = Kf(Motion::Cv { sv: 0.3 });
+    let imm = Imm::new([f], MarkovMatrix::new([[1.0]]).unwrap()).unwrap();
+    let est = ImmEstimate::from_common(start(), [1.0]).unwrap();
+    let z = Vector::<2>::new(170.0, -20.0);
+    let upd = imm.step(&est, 5.0, &meas(50.0), &z).unwrap();
+    let pred = f.predict(&start(), 5.0).unwrap();
+    let (post, innov) = f.update(&pred, &meas(50.0), &z).unwrap();
+    let c = upd.estimate.combined().unwrap();
+    assert!((c.mean() - post.mean()).amax() < 1e-9);
+    assert!((c.cov() - post.cov()).amax() < 1e-9);
+    assert!((upd.log_likelihood - innov.log_likelihood).abs() < 1e-12);
+}
+
+#[test]
+fn mode_probabilities_and_mixing_match_a_hand_computation() {
+    // Two modes (CV with different process noise), μ = (0.7, 0.3), Π = [[0.9, 0.1], [0.2, 0.8]].
+    // Reference: eqs (1), (2), (6) evaluated directly in linear space.
+    let f = [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 3.0 })];
+    let pi = [[0.9, 0.1], [0.2, 0.8]];
+    let imm = Imm::new(f, MarkovMatrix::new(pi).unwrap()).unwrap();
+    let g1 = start();
+    let g2 = Gaussian::new(
+        Vector::<4>::new(120.0, 8.0, -40.0, 7.0),
+        Matrix::<4, 4>::identity() * 300.0,
+    )
+    .unwrap();
+    let mu = [0.7, 0.3];
+    let est = ImmEstimate::new([g1, g2], mu).unwrap();
+    let z = Vector::<2>::new(190.0, -10.0);
+    let upd = imm.step(&est, 5.0, &meas(40.0), &z).unwrap();
+
+    let cbar = [0.7 * 0.9 + 0.3 * 0.2, 0.7 * 0.1 + 0.3 * 0.8];
+    let g = [g1, g2];
+    let mut lik = [0.0; 2];
+    for j in 0..2 {
+        let w = [pi[0][j] * mu[0] / cbar[j], pi[1][j] * mu[1] / cbar[j]];
+        let x0 = g[0].mean() * w[0] + g[1].mean() * w[1];
+        let mut P0 = Matrix::<4, 4>::zeros();
+        for i in 0..2 {
+            let d = g[i].mean() - x0;
+            P0 += (g[i].cov() + d * d.transpose()) * w[i];
+        }
+        let pred = f[j].predict(&Gaussian::new(x0, P0).unwrap(), 5.0).unwrap();
+        let (post, innov) = f[j].update(&pred, &meas(40.0), &z).unwrap();
+        lik[j] = innov.log_likelihood.exp();
+        assert!((upd.estimate.modes()[j].mean() - post.mean()).amax() < 1e-9);
+    }
+    let total = cbar[0] * lik[0] + cbar[1] * lik[1];
+    let mu_new = upd.estimate.mode_probabilities();
+    for j in 0..2 {
+        assert!((mu_new[j] - cbar[j] * lik[j] / total).abs() < 1e-12);
+    }
+    assert!((upd.log_likelihood - total.ln()).abs() < 1e-12);
+}
+
+#[test]
+fn tiny_likelihoods_do_not_underflow() {
+    // A plot 2 km off with R = 1 m²: every likelihood is about e^{-2e6/2}, which is 0.0 in
+    // f64; linear-space normalisation would give 0/0. In log space the probabilities stay
+    // finite and sum to one, and the mode with the larger S is preferred.
+    let imm = Imm::new(
+        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        MarkovMatrix::new([[0.5, 0.5], [0.5, 0.5]]).unwrap(),
+    )
+    .unwrap();
+    let est = ImmEstimate::from_common(start(), [0.5, 0.5]).unwrap();
+    let upd = imm
+        .step(&est, 1.0, &meas(1.0), &Vector::<2>::new(2100.0, -50.0))
+        .unwrap();
+    assert!(upd.mode_log_likelihoods[0].exp() == 0.0);
+    let mu = upd.estimate.mode_probabilities();
+    assert!(mu.iter().all(|p| p.is_finite()));
+    assert!((mu.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+    assert!(mu[1] > 0.999);
+    assert!(upd.estimate.log_mode_probabilities()[0].is_finite());
+}
+
+#[test]
+fn bad_input_is_rejected_and_the_estimate_is_untouched() {
+    let imm = paper_imm();
+    let est = ImmEstimate::from_common(start(), [1.0 / 3.0; 3]).unwrap();
+    let copy = est;
+    let z = Vector::<2>::new(150.0, -20.0);
+    for dt in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert!(matches!(
+            imm.step(&est, dt, &meas(10.0), &z),
+            Err(ImmError::InvalidInterval { .. })
+        ));
+    }
+    assert!(matches!(
+        imm.step(&est, 5.0, &meas(10.0), &Vector::<2>::new(f64::NAN, 0.0)),
+        Err(ImmError::Filter { mode: 0, .. })
+    ));
+    assert_eq!(est, copy);
+    assert!(matches!(
+        ImmEstimate::<4, 3>::from_common(start(), [0.5, 0.5, 0.5]),
+        Err(ImmError::InvalidProbabilities { .. })
+    ));
+    assert!(matches!(
+        ImmEstimate::<4, 2>::from_common(start(), [f64::NAN, 1.0]),
+        Err(ImmError::InvalidProbabilities { .. })
+    ));
+    // Imm::<_, _, 0> cannot be built: MarkovMatrix::<0>::new is rejected (markov tests).
+    assert!(NoiseGrid::<5>::common(0.6).is_err()); // 1 − 2p < 0
+    assert!(NoiseGrid::<5>::independent(0.1).is_err()); // 5 is not a square
+    assert!(NoiseGrid::<5>::common(f64::NAN).is_err());
+    assert!(NoiseGrid::<2>::custom([[1.0, 0.0], [1.0, 1.0]]).is_err());
+    assert!(MultiImm::new(paper_imm(), NoiseGrid::<5>::common(0.1).unwrap(), Some(1.5)).is_err());
+    assert!(VariationalNoiseImm::new(paper_imm(), 0.0).is_err());
+    let var = NoiseVariances::new(1.0, 1.0).unwrap();
+    assert!(VariationalEstimate::new(est, var, -1.0).is_err());
+    assert!(Embedded::<Motion, 4, 3>::new(Motion::Cv { sv: 1.0 }, 0.0).is_err());
+    assert!(Embedded::<Motion, 4, 5>::new(Motion::Cv { sv: 1.0 }, -1.0).is_err());
+}
+
+#[test]
+fn multi_imm_bad_steps_leave_the_estimate_untouched() {
+    let m = MultiImm::new(
+        paper_imm(),
+        NoiseGrid::<5>::common(0.1).unwrap(),
+        Some(0.05),
+    )
+    .unwrap();
+    let var = NoiseVariances::from_sigmas(70.0, 0.08_f64.to_radians()).unwrap();
+    let est = MultiImmEstimate::new(
+        ImmEstimate::from_common(start(), [1.0 / 3.0; 3]).unwrap(),
+        var,
+    );
+    let copy = est;
+    let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
+    let plot = PolarPlot::new(150.0, 0.1).unwrap();
+    assert!(matches!(
+        m.step(&est, -5.0, &plot, &conv),
+        Err(ImmError::InvalidInterval { .. })
+    ));
+    assert_eq!(est, copy);
+    assert!(m.step(&est, 5.0, &plot, &conv).is_ok());
+}
+
+#[test]
+fn embedded_model_moves_the_shared_states_and_holds_the_rest() {
+    // CV (4 states) in a 5-state [x, vx, y, vy, ω] common state: F = diag(F_cv, 1),
+    // Q = diag(Q_cv, q dt).
+    let cv = Motion::Cv { sv: 0.5 };
+    let e = Embedded::<Motion, 4, 5>::new(cv, 1e-4).unwrap();
+    let x = Vector::<5>::new(1.0, 2.0, 3.0, 4.0, 0.05);
+    let y = e.propagate(&x, 2.0);
+    let ys = cv.propagate(&Vector::<4>::new(1.0, 2.0, 3.0, 4.0), 2.0);
+    assert!((y.fixed_rows::<4>(0) - ys).amax() < 1e-12);
+    assert!((y[4] - 0.05).abs() < 1e-15);
+    let q = e.process_noise(&x, 2.0);
+    assert!((q[(4, 4)] - 2e-4).abs() < 1e-15);
+    assert!((q.fixed_view::<4, 4>(0, 0) - cv.process_noise(&ys, 2.0)).amax() < 1e-15);
+    assert!(q.fixed_view::<4, 1>(0, 4).amax() < 1e-300);
+}
+
+// ---------------------------------------------------------------- gimpo Monte Carlo
+
+const SIGMA_R: f64 = 70.0;
+fn sigma_t() -> f64 {
+    0.08_f64.to_radians()
+}
+const STARTS: [f64; 5] = [0.2, 0.5, 1.0, 1.5, 2.0];
+
+/// Per run: the final variance ratios (range, azimuth) and the sum of squared position
+/// errors and count over t ≥ 25 % of the scenario.
+#[derive(Debug, Clone, Copy, Default)]
+struct Outcome {
+    ratio: [f64; 2],
+    sse: f64,
+    n: usize,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Estimator {
+    Fixed,
+    Paper { p: f64, clip: Option<f64> },
+    Variational { rho: f64 },
+}
+
+fn run_one(kind: Estimator, start_factor: f64, times: &[f64], pl: &[PolarPlot]) -> Outcome {
+    let truth = NoiseVariances::from_sigmas(SIGMA_R, sigma_t()).unwrap();
+    let var0 =
+        NoiseVariances::new(truth.range() * start_factor, truth.azimuth() * start_factor).unwrap();
+    let imm = paper_imm();
+    let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
+    let init = two_point(&pl[0], &pl[1], times[1] - times[0], &var0);
+    let t_cut = 0.25 * 1019.0;
+    let mut out = Outcome::default();
+    let score = |t: f64, x: &Vector<4>, out: &mut Outcome| {
+        if t >= t_cut {
+            let tr = truth_at(t);
+            out.sse += (x[0] - tr[0]).powi(2) + (x[2] - tr[2]).powi(2);
+            out.n += 1;
+        }
+    };
+    match kind {
+        Estimator::Fixed => {
+            let mut est = init;
+            for k in 2..times.len() {
+                let (m, z) = conv.convert(&pl[k], &var0).unwrap();
+                est = imm
+                    .step(&est, times[k] - times[k - 1], &m, &z)
+                    .unwrap()
+                    .estimate;
+                score(times[k], est.combined().unwrap().mean(), &mut out);
+            }
+            out.ratio = [start_factor; 2];
+        }
+        Estimator::Paper { p, clip } => {
+            let m = MultiImm::new(imm, NoiseGrid::<5>::common(p).unwrap(), clip).unwrap();
+            let mut est = MultiImmEstimate::new(init, var0);
+            for k in 2..times.len() {
+                est = m
+                    .step(&est, times[k] - times[k - 1], &pl[k], &conv)
+                    .unwrap()
+                    .estimate;
+                score(times[k], est.combined().unwrap().mean(), &mut out);
+            }
+            let r = est.reference();
+            out.ratio = [r.range() / truth.range(), r.azimuth() / truth.azimuth()];
+        }
+        Estimator::Variational { rho } => {
+            let v = VariationalNoiseImm::new(imm, rho).unwrap();
+            let mut est = VariationalEstimate::new(init, var0, 2.0).unwrap();
+            for k in 2..times.len() {
+                est = v
+                    .step(&est, times[k] - times[k - 1], &pl[k], &conv)
+                    .unwrap()
+                    .0;
+                score(times[k], est.imm().combined().unwrap().mean(), &mut out);
+            }
+            let r = est.variances().unwrap();
+            out.ratio = [r.range() / truth.range(), r.azimuth() / truth.azimuth()];
+        }
+    }
+    out
+}
+
+/// Mean final ratios, per-run sd of the range ratio, and the RMS position error, over `runs`
+/// runs (common random numbers: run i uses seed 1000 + i whatever the estimator).
+fn campaign(kind: Estimator, start_factor: f64, runs: u64) -> ([f64; 2], f64, f64) {
+    let times = beam_times();
+    let (mut s, mut ss, mut sse, mut n) = ([0.0; 2], 0.0, 0.0, 0);
+    for i in 0..runs {
+        let mut rng = ChaCha8Rng::seed_from_u64(1000 + i);
+        let pl = plots(&times, SIGMA_R, sigma_t(), &mut rng);
+        let o = run_one(kind, start_factor, &times, &pl);
+        s[0] += o.ratio[0];
+        s[1] += o.ratio[1];
+        ss += o.ratio[0] * o.ratio[0];
+        sse += o.sse;
+        n += o.n;
+    }
+    let r = runs as f64;
+    let mean = [s[0] / r, s[1] / r];
+    let sd = (ss / r - mean[0] * mean[0]).max(0.0).sqrt();
+    (mean, sd, (sse / n as f64).sqrt())
+}
+
+/// The paper's rule (p = 0.1, ±5 % clip) against the independent re-implementation quoted
+/// in issue 4 (100 runs): final ratio ≈ 0.98 / 1.01 / 1.03 / 1.05 / 1.07 from starts
+/// 0.2 … 2, per-run scatter ≈ ±11 %. Our 100-run numbers: 0.986 / 1.015 / 1.041 / 1.062 /
+/// 1.080, sd 0.10. With `runs` runs the standard error of a mean is ≈ 0.10/√runs; the
+/// tolerance is 3 standard errors (0.039 at 60 runs). Common random numbers across starts
+/// make the ordering exact.
+fn check_paper_rule(runs: u64) {
+    let reference = [0.98, 1.01, 1.03, 1.05, 1.07];
+    let tol = 3.0 * 0.10 / (runs as f64).sqrt();
+    let mut prev = 0.0;
+    let true_r = campaign(Estimator::Fixed, 1.0, runs).2;
+    for (f, want) in STARTS.iter().zip(reference) {
+        let (mean, sd, rms) = campaign(
+            Estimator::Paper {
+                p: 0.1,
+                clip: Some(0.05),
+            },
+            *f,
+            runs,
+        );
+        println!(
+            "paper rule from {f}: ratio {:.3} sd {sd:.3} rms {rms:.2} (true-R rms {true_r:.2})",
+            mean[0]
+        );
+        assert!(
+            (mean[0] - want).abs() < tol,
+            "start {f}: {} vs {want}",
+            mean[0]
+        );
+        // One common scale: range and azimuth ratios are identical.
+        assert!((mean[0] - mean[1]).abs() < 1e-9);
+        assert!(mean[0] > prev, "the fixed point moves with the start");
+        prev = mean[0];
+        assert!((0.06..0.16).contains(&sd), "per-run scatter {sd} vs ≈ 0.11");
+        // RMS: ≈ 1.3 % worse than true R from 0.2, within 0.5 % from 1–2 (issue 4);
+        // ours (100 runs): +1.65 % from 0.2, −0.3 … 0.0 % from 1–2.
+        let rel = rms / true_r - 1.0;
+        if *f < 0.3 {
+            assert!((0.0..0.03).contains(&rel), "from 0.2: {rel}");
+        } else if *f >= 1.0 {
+            assert!(rel.abs() < 0.01, "from {f}: {rel}");
+        }
+    }
+    // Fixed R = 0.2 × truth is clearly worse than 2 × truth (paper Fig. 7).
+    let low = campaign(Estimator::Fixed, 0.2, runs).2;
+    let high = campaign(Estimator::Fixed, 2.0, runs).2;
+    assert!(low > 1.1 * high, "{low} vs {high}");
+}
+
+#[test]
+fn paper_rule_reproduces_the_reference_on_gimpo() {
+    check_paper_rule(60);
+}
+
+#[test]
+#[ignore = "full 100-run count (≈ 10 s in the dev profile)"]
+fn paper_rule_reproduces_the_reference_on_gimpo_full() {
+    check_paper_rule(100);
+}
+
+/// The variational estimator (ρ = 0.97): its fixed point is the truth (at the true R, the
+/// post-fit statistic E[ε² + J P Jᵀ]/σ² measured 0.98 for range, 0.995 for azimuth), but on
+/// this scenario the final value keeps a trace of the maneuvers (the last turn ends 86 s
+/// before the end). Our 100-run numbers: range 0.969 … 0.984, azimuth 0.962 … 1.055 from
+/// the five starts. The issue's claim (within 3 % from all five) does NOT hold for the
+/// azimuth from starts 1.5 and 2 (1.038, 1.055); we test what holds, within 3 standard
+/// errors (per-run sd 0.135): range within 4 %, azimuth within 7 %, and the spread over
+/// starts smaller than the paper rule's.
+#[test]
+fn variational_estimator_ends_near_the_truth() {
+    let runs = 40;
+    let se3 = 3.0 * 0.135 / (runs as f64).sqrt();
+    let mut ends = Vec::new();
+    for f in STARTS {
+        let (mean, _, _) = campaign(Estimator::Variational { rho: 0.97 }, f, runs);
+        assert!(
+            (mean[0] - 1.0).abs() < 0.04 + se3,
+            "range from {f}: {}",
+            mean[0]
+        );
+        assert!(
+            (mean[1] - 1.0).abs() < 0.07 + se3,
+            "azimuth from {f}: {}",
+            mean[1]
+        );
+        ends.push(mean);
+    }
+    // Range: spread over starts 0.015 (ours) vs the paper rule's ≈ 0.09.
+    let spread = ends.iter().map(|m| m[0]).fold(f64::NEG_INFINITY, f64::max)
+        - ends.iter().map(|m| m[0]).fold(f64::INFINITY, f64::min);
+    assert!(spread < 0.05, "{spread}");
+}
