@@ -1,5 +1,58 @@
-//! Adaptive filters — **not built yet**.
+//! Adaptive filters.
 //!
-//! This crate will hold the decoupled tracking filter with adaptive measurement
-//! noise (seed 003) and GLRT maneuver detection with input estimation (seed 001).
-//! It exports nothing yet.
+//! - The decoupled tracking filter of Fitzgerald (1985) on converted radar-beacon
+//!   plots ([`DecoupledFilter`], the CDKF of seed 003), its adaptive-`R` version
+//!   ([`AdaptiveDecoupledFilter`], the ADKF, with [`REstimate`] and the corrected
+//!   post-fit sample [`post_fit_sample`]), and the full coupled 6-state Kalman
+//!   filter [`CoupledCvFilter`] as the accuracy reference.
+//! - The radar-beacon plot model (seed 003 eqs 6–12, corrected):
+//!   [`SphericalPlot`], [`RbsNoiseModel`], [`ConvertedPlot`].
+//! - [`decoupled_scenario`]: the "rbs-landing" Monte Carlo experiment of seed 003.
+//!
+//! State layout: `[x, vx, y, vy, z, vz]`, SI units, azimuth from +x counter-clockwise.
+//!
+//! # Example
+//! ```
+//! use argus_adaptive::{
+//!     AdaptiveDecoupledFilter, AdaptiveRConfig, AdaptiveState, ConvertedPlot, DecoupledEstimate,
+//!     DecoupledFilter, FrameHandling, REstimate, RbsNoiseModel, SphericalPlot, Warmup,
+//! };
+//! use argus_core_math::{Matrix, Vector};
+//!
+//! let radar = RbsNoiseModel::calibrated(149.9, 2f64.to_radians(), 2f64.to_radians(), 1.6, 3006.0, 2.97)?;
+//! let truth = Vector::<3>::new(-3000.0, -100.0, 157.2);
+//! let sph = SphericalPlot::from_cartesian(&truth)?;
+//! let plot = ConvertedPlot::from_spherical(&sph, &radar.sigmas_at_range(sph.range())?)?;
+//!
+//! let cdkf = DecoupledFilter::new(0.05, FrameHandling::Rotate)?;
+//! let adkf = AdaptiveDecoupledFilter::new(cdkf, AdaptiveRConfig::new(20, 1e-6, Warmup::Constant)?);
+//! let block = Matrix::<2, 2>::new(100.0, 0.0, 0.0, 25.0);
+//! let mean = Vector::<6>::new(-3003.5, 35.0, -100.0, 0.0, 157.0, -1.8);
+//! let state = AdaptiveState {
+//!     estimate: DecoupledEstimate::new(mean, [block; 3], *plot.frame())?,
+//!     r: REstimate::new(plot.cartesian_noise())?,
+//! };
+//! let predicted = adkf.predict(&state, 0.1)?;
+//! let (posterior, info) = adkf.update(&predicted, &plot)?;
+//! assert!(info.innovation.nis.is_finite());
+//! assert!((posterior.estimate.position() - truth).norm() < 10.0);
+//! # Ok::<(), argus_adaptive::AdaptiveError>(())
+//! ```
+
+mod adaptive_r;
+mod coupled;
+mod decoupled;
+mod decoupled_error;
+mod decoupled_plot;
+pub mod decoupled_scenario;
+
+pub use adaptive_r::{
+    AdaptiveDecoupledFilter, AdaptiveRConfig, AdaptiveState, AdaptiveUpdate, REstimate, Warmup,
+    post_fit_sample,
+};
+pub use coupled::CoupledCvFilter;
+pub use decoupled::{DecoupledEstimate, DecoupledFilter, DecoupledUpdate, FrameHandling};
+pub use decoupled_error::AdaptiveError;
+pub use decoupled_plot::{
+    ConvertedPlot, RbsNoiseModel, SphericalPlot, SphericalSigmas, aligned_frame,
+};
