@@ -56,3 +56,15 @@ pub use decoupled_error::AdaptiveError;
 pub use decoupled_plot::{
     ConvertedPlot, RbsNoiseModel, SphericalPlot, SphericalSigmas, aligned_frame,
 };
+
+// Seed 001: GLRT maneuver detection, MRAS input estimation, the adaptive filter.
+pub mod glrt;
+pub mod maneuver;
+mod maneuver_error;
+pub mod mras;
+pub use glrt::{Detection, FailureKind, Glrt, GlrtConfig, GlrtOutcome, StepLinearization};
+pub use maneuver::{
+    Compensation, InputLinearization, ManeuverFilter, ManeuverReport, ManeuverState, ModelInput,
+};
+pub use maneuver_error::ManeuverError;
+pub use mras::Mras;
