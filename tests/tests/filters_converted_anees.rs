@@ -4,6 +4,9 @@
 //! interval (Bar-Shalom, Li & Kirubarajan 2001 §5.4.2; unbiased conversion: Mo et
 //! al. 1998, BLK 2001 §10.4.3).
 
+// A test binary: a panic on an unexpected error is the failure report.
+#![allow(clippy::unwrap_used)]
+
 use argus_core_math::{Gaussian, Matrix, Vector, anees_interval};
 use argus_filters::{ChiSquareAverage, GaussianFilter, Kf, nees, two_point_cv2};
 use argus_motion_models::Cv2D;
