@@ -11,6 +11,62 @@
 //!
 //! Models are infallible on purpose: validating `dt` (finite, positive) and the
 //! state is the filter's job, which reports a typed error.
+//!
+//! | model | state | transition | noise |
+//! |---|---|---|---|
+//! | [`Cv1D`], [`Cv2D`], [`Cv3D`] | `[x, vx, …]` | constant velocity | [`CvNoise`]: discrete or continuous white acceleration |
+//! | [`Ca1D`], [`Ca2D`], [`Ca3D`] | `[x, vx, ax, …]` | constant acceleration | [`CaNoise`]: discrete or continuous white jerk |
+//! | [`CoordinatedTurn`] | `[x, vx, y, vy]` | turn at a known rate ω, exact as ω → 0 | seed 000's `σv² Γ Γᵀ` |
+//! | [`CoordinatedTurnRate`] | `[x, vx, y, vy, ω]` | turn with the rate as a state; Jacobian and Hessians | `σ_a`, `σ_ω` |
+//! | [`QuadraticDrag`] | `[x, vx, y, vy]` | `v̇ = −α v\|v\| + u` (seed 001), RK4 | white acceleration `q` |
+//! | [`PlanarModel`] | `[x, vx, y, vy]` | closed enum CV / CT for IMMs | delegated |
+//!
+//! Constructors validate their parameters and return [`MotionError`].
+//!
+//! # Example
+//! ```
+//! use argus_motion_models::{CoordinatedTurn, Cv2D, LinearMotionModel, MotionModel};
+//! use argus_core_math::Vector;
+//!
+//! // Seed 000's CV model (σv = 0.1 m/s²) and a 3 deg/s counter-clockwise turn.
+//! let cv = Cv2D::discrete(0.1)?;
+//! let ct = CoordinatedTurn::from_degrees_per_second(3.0, 0.5)?;
+//! let x = Vector::<4>::new(-60_000.0, 90.0, -20_000.0, 0.0);
+//!
+//! // CV moves 450 m along +x in 5 s.
+//! let y = cv.propagate(&x, 5.0);
+//! assert!((y[0] - (-59_550.0)).abs() < 1e-9);
+//!
+//! // The turn keeps the speed and rotates the velocity by 15 degrees.
+//! let z = ct.propagate(&x, 5.0);
+//! assert!((z[1].hypot(z[3]) - 90.0).abs() < 1e-9);
+//! assert!((z[3].atan2(z[1]).to_degrees() - 15.0).abs() < 1e-9);
+//!
+//! // Q = σv² Γ Γᵀ: the position variance is σv² T⁴/4 = 0.01 · 625/4.
+//! let q = cv.process_noise(&x, 5.0);
+//! assert!((q[(0, 0)] - 1.5625).abs() < 1e-12);
+//! assert_eq!(ct.transition(5.0), ct.jacobian(&x, 5.0));
+//! # Ok::<(), argus_motion_models::MotionError>(())
+//! ```
+
+mod block;
+mod ca;
+mod ct;
+mod ct_rate;
+mod cv;
+mod drag;
+mod error;
+mod planar;
+mod rk4;
+mod turn;
+
+pub use ca::{Ca1D, Ca2D, Ca3D, CaNoise, ca_axis_transition};
+pub use ct::{CoordinatedTurn, ct_transition};
+pub use ct_rate::CoordinatedTurnRate;
+pub use cv::{Cv1D, Cv2D, Cv3D, CvNoise, cv_axis_transition};
+pub use drag::{DEFAULT_MAX_STEP, QuadraticDrag};
+pub use error::MotionError;
+pub use planar::PlanarModel;
 
 use argus_core_math::{Matrix, Vector};
 
