@@ -69,6 +69,7 @@ impl CaNoise {
     }
 
     /// The `3 × 3` per-axis covariance over `dt` (see the variants for the formulas).
+    /// Not validated here: the model constructors reject negative or non-finite intensities.
     #[must_use]
     pub fn axis_covariance(&self, dt: f64) -> Matrix<3, 3> {
         let t2 = dt * dt;

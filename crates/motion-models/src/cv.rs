@@ -67,6 +67,7 @@ impl CvNoise {
     }
 
     /// The `2 × 2` per-axis covariance over `dt` (see the variants for the formulas).
+    /// Not validated here: the model constructors reject negative or non-finite intensities.
     #[must_use]
     pub fn axis_covariance(&self, dt: f64) -> Matrix<2, 2> {
         let t2 = dt * dt;

@@ -18,8 +18,8 @@
 //!
 //! The discrete model ([`MotionModel`]) integrates over `dt` with the classical RK4 method
 //! in `n = ⌈|dt| / max_step⌉` equal substeps (default `max_step` = [`DEFAULT_MAX_STEP`]
-//! = 0.1 s; for a speed `v` the local error scales as `(α v h)⁵`, so `α v h ≤ 0.1` keeps the
-//! relative error near 1e-8 per unit time or better):
+//! = 0.1 s; the error is fourth order in the substep: measured for α|v| = 0.6 /s over 5 s,
+//! 7e-5 m of a 700 m displacement, 1e-7 relative; see `tests/drag.rs`):
 //!
 //! - `propagate`: RK4 on `ẋ = a(x)`;
 //! - `jacobian`: RK4 on the augmented system `ẋ = a(x)`, `Φ̇ = A(x) Φ`, `Φ(0) = I` — this is
