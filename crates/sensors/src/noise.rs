@@ -121,8 +121,8 @@ impl LinkBudget {
 /// monopulse slope; the SNR comes from a [`LinkBudget`] at the target's range.
 ///
 /// # References
-/// Seed 003 (Kim & Hwang 2013), eqs (6)–(8) (after Blake / Barton's radar-accuracy
-/// formulas, their ref. [12]).
+/// Seed 003 (Kim & Hwang 2013), eqs (6)–(8) (after G. R. Curry, *Radar System Performance Modeling*,
+/// 2nd ed., Artech House 2004, their ref. \[12\]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SnrNoise {
     range_resolution: f64,
