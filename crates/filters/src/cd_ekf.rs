@@ -28,7 +28,7 @@ pub const MAX_SUBSTEPS: usize = 100_000;
 /// # References
 /// Seed 001 eqs (2-1)–(2-6); Gelb (1974), *Applied Optimal Estimation*, Table 6.1-1
 /// (EKF) and Table 6.1-2 (truncated second-order filter); Jazwinski (1970) §9.3.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CdEkf<Mo> {
     model: Mo,
     substeps: usize,

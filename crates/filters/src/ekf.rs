@@ -18,7 +18,7 @@ use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction, 
 /// # References
 /// Seed 002 eqs (14)–(25); seed 001 eqs (2-3), (2-6); Bar-Shalom, Li &
 /// Kirubarajan (2001) §10.3.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ekf<Mo> {
     model: Mo,
     form: CovarianceForm,
@@ -91,7 +91,7 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ekf<Mo> {
 /// # References
 /// Bar-Shalom, Li & Kirubarajan (2001) §10.3.2–10.3.3 (eqs 10.3.2-4, 10.3.2-6,
 /// 10.3.3-2, 10.3.3-4); Gelb (1974) Table 6.1-2; seed 001 (truncated second-order filter).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SecondOrderEkf<Mo> {
     model: Mo,
     form: CovarianceForm,

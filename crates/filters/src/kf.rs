@@ -57,7 +57,7 @@ use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction, 
 /// assert!((innov.nis - 3.0).abs() < 1e-12);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Kf<Mo> {
     model: Mo,
     form: CovarianceForm,

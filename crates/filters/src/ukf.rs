@@ -50,7 +50,7 @@ impl Default for UtParams {
 /// Julier & Uhlmann (2004), "Unscented filtering and nonlinear estimation", Proc.
 /// IEEE 92(3); Julier (2002), "The scaled unscented transformation", ACC; Wan & van
 /// der Merwe (2000), "The unscented Kalman filter for nonlinear estimation", eqs (15)–(16).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ukf<const N: usize, Mo> {
     model: Mo,
     params: UtParams,
