@@ -1,2 +1,230 @@
-//! The `argus` command (placeholder).
-fn main() {}
+//! The `argus` command: paper scenarios (Monte Carlo, table, figures), plot simulation
+//! and tracking a user's plot file. File formats: `docs/FORMATS.md`.
+//!
+//! Errors are printed once (`error: <file>:<line>: field '<f>': <what>`) and the process
+//! exits with code 2; nothing a user feeds in panics.
+
+mod error;
+mod estimator;
+mod output;
+mod plotfile;
+mod render;
+mod report;
+mod scenario;
+mod scenarios;
+mod track;
+
+use std::io::IsTerminal;
+use std::ops::Range;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use crate::error::CliError;
+use crate::report::RunInfo;
+use crate::scenario::{Params, Progress, RunContext};
+
+/// Radar target tracking: reproduce the seed papers' experiments, simulate plots, track.
+#[derive(Debug, Parser)]
+#[command(name = "argus", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Lists the scenarios, one line each.
+    Scenarios,
+    /// Runs a scenario's Monte Carlo campaign: table on stdout, files in --out.
+    Run {
+        /// Scenario name (see `argus scenarios`).
+        scenario: String,
+        /// Number of runs `N` (runs 0..N) or a range `A..B` of run indices.
+        #[arg(long)]
+        runs: Option<String>,
+        /// Base seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Output directory (default `out/<scenario>`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Parameter override `key=value` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Writes one run's plots (and truth) of a scenario as CSV.
+    Simulate {
+        /// Scenario name.
+        scenario: String,
+        /// Base seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Run index (the plots of run `R` of a campaign with this seed).
+        #[arg(long, default_value_t = 0)]
+        run: u64,
+        /// Plot file to write.
+        #[arg(long)]
+        out: PathBuf,
+        /// Truth file to write (default: `<out stem>.truth.csv` beside the plots).
+        #[arg(long)]
+        truth: Option<PathBuf>,
+        /// Parameter override `key=value` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Runs a configured estimator over a plot file, in time order.
+    Track {
+        /// Estimator and sensor configuration (TOML).
+        #[arg(long)]
+        config: PathBuf,
+        /// Plot file (CSV).
+        #[arg(long)]
+        plots: PathBuf,
+        /// Track file to write (CSV).
+        #[arg(long)]
+        out: PathBuf,
+    },
+}
+
+/// Parses `N` (= `0..N`) or `A..B`.
+fn parse_runs(s: &str) -> Result<Range<u64>, CliError> {
+    let bad = || CliError::Usage(format!("--runs {s}: expected N or A..B with A < B"));
+    let r = if let Some((a, b)) = s.split_once("..") {
+        a.trim().parse().map_err(|_| bad())?..b.trim().parse().map_err(|_| bad())?
+    } else {
+        0..s.trim().parse().map_err(|_| bad())?
+    };
+    if r.is_empty() { Err(bad()) } else { Ok(r) }
+}
+
+fn find(name: &str) -> Result<Box<dyn scenario::Scenario>, CliError> {
+    scenarios::find(name).ok_or_else(|| {
+        let known: Vec<&str> = scenarios::all().iter().map(|s| s.name()).collect();
+        CliError::Usage(format!(
+            "unknown scenario '{name}' (known: {})",
+            known.join(", ")
+        ))
+    })
+}
+
+fn execute(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
+        Command::Scenarios => {
+            for s in scenarios::all() {
+                println!(
+                    "{:<16} {} (default {} runs)",
+                    s.name(),
+                    s.description(),
+                    s.default_runs()
+                );
+            }
+        }
+        Command::Run {
+            scenario,
+            runs,
+            seed,
+            out,
+            set,
+        } => {
+            let sc = find(&scenario)?;
+            let runs = match runs {
+                Some(r) => parse_runs(&r)?,
+                None => 0..sc.default_runs(),
+            };
+            let params = Params::from_settings(&sc.params(), &set)?;
+            let out = out.unwrap_or_else(|| PathBuf::from("out").join(sc.name()));
+            let progress = Progress::new(runs.end - runs.start, std::io::stderr().is_terminal());
+            let ctx = RunContext {
+                runs: runs.clone(),
+                seed,
+                params,
+                progress,
+            };
+            let report = sc.run(&ctx)?;
+            let info = RunInfo {
+                scenario: sc.name(),
+                seed,
+                runs: runs.clone(),
+                params: ctx.params.as_map(),
+            };
+            let files = report.write(&out, &info)?;
+            println!(
+                "argus run {} --seed {seed} --runs {}..{}",
+                sc.name(),
+                runs.start,
+                runs.end
+            );
+            print!("{}", report.table_text());
+            for f in files {
+                println!("wrote {f}");
+            }
+        }
+        Command::Simulate {
+            scenario,
+            seed,
+            run,
+            out,
+            truth,
+            set,
+        } => {
+            let sc = find(&scenario)?;
+            let params = Params::from_settings(&sc.params(), &set)?;
+            let (scene, sensors) = sc.scene(&params)?;
+            let plots =
+                argus_sim::generate_plots(&scene, &sensors, &mut argus_sim::run_rng(seed, run))?;
+            let (text, skipped) = plotfile::write_text(&plots);
+            if skipped > 0 {
+                return Err(CliError::Usage(format!(
+                    "{skipped} plots of another layout cannot share one file"
+                )));
+            }
+            output::write_atomic(&out, text.as_bytes())?;
+            // Truth at every plot time of each target, in the papers' 2-D order.
+            let mut t_text = String::from("t,target,x,vx,y,vy,z,vz\n");
+            let mut times: Vec<f64> = plots.iter().map(|p| p.time).collect();
+            times.dedup_by(|a, b| a.to_bits() == b.to_bits());
+            for t in times {
+                for (id, tr) in scene.targets() {
+                    if let Ok(s) = tr.state_at(t) {
+                        t_text.push_str(&format!(
+                            "{t},{},{},{},{},{},{},{}\n",
+                            id.0,
+                            s.position.x,
+                            s.velocity.x,
+                            s.position.y,
+                            s.velocity.y,
+                            s.position.z,
+                            s.velocity.z
+                        ));
+                    }
+                }
+            }
+            let truth_path = truth.unwrap_or_else(|| out.with_extension("truth.csv"));
+            output::write_atomic(&truth_path, t_text.as_bytes())?;
+            println!(
+                "wrote {} ({} plots) and {}",
+                out.display(),
+                plots.len(),
+                truth_path.display()
+            );
+        }
+        Command::Track { config, plots, out } => {
+            let n = track::run(&config, &plots, &out)?;
+            println!("wrote {} ({n} track points)", out.display());
+        }
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match execute(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}

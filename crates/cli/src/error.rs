@@ -1,0 +1,103 @@
+//! The error type of the `argus` command.
+
+use std::path::PathBuf;
+
+/// Where a bad value sits in an input file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct Location {
+    /// The file.
+    pub(crate) file: PathBuf,
+    /// 1-based line number, when known.
+    pub(crate) line: Option<u64>,
+    /// The field (CSV column or TOML key), when known.
+    pub(crate) field: Option<String>,
+}
+
+impl std::fmt::Display for Location {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.file.display())?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+        }
+        if let Some(field) = &self.field {
+            write!(f, ": field '{field}'")?;
+        }
+        Ok(())
+    }
+}
+
+/// What went wrong in a command. Printed once, without a backtrace; the process exits
+/// with code 2.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub(crate) enum CliError {
+    /// A value in an input file is bad.
+    #[error("{at}: {message}")]
+    Input {
+        /// Where.
+        at: Location,
+        /// What is wrong.
+        message: String,
+    },
+    /// A command-line argument is bad.
+    #[error("{0}")]
+    Usage(String),
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The simulation rejected a parameter.
+    #[error("simulation: {0}")]
+    Sim(#[from] argus_sim::SimError),
+    /// A filter step failed.
+    #[error("filter: {0}")]
+    Filter(#[from] argus_filters::FilterError),
+    /// A measurement model rejected a value.
+    #[error("sensor: {0}")]
+    Sensor(#[from] argus_sensors::SensorError),
+    /// A motion model rejected a value.
+    #[error("motion model: {0}")]
+    Motion(#[from] argus_motion_models::MotionError),
+    /// A numerical check failed.
+    #[error("math: {0}")]
+    Math(#[from] argus_core_math::MathError),
+    /// Drawing a figure failed.
+    #[error("figure {file}: {message}")]
+    Plot {
+        /// The figure file.
+        file: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+impl CliError {
+    /// An input error at `file:line`, field `field`.
+    pub(crate) fn input(
+        file: &std::path::Path,
+        line: Option<u64>,
+        field: Option<&str>,
+        message: impl Into<String>,
+    ) -> Self {
+        Self::Input {
+            at: Location {
+                file: file.to_path_buf(),
+                line,
+                field: field.map(str::to_owned),
+            },
+            message: message.into(),
+        }
+    }
+
+    /// An I/O error on `path`.
+    pub(crate) fn io(path: &std::path::Path, source: std::io::Error) -> Self {
+        Self::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+}

@@ -1,0 +1,92 @@
+//! The estimators the command builds from the foundation crates: a Kalman filter on the
+//! 2-D constant-velocity model (DWNA noise) with converted plots, an EKF on polar plots,
+//! the unbiased polar → Cartesian conversion and two-point initialisation.
+
+use argus_core_math::{Gaussian, Matrix, Vector};
+use argus_filters::{Ekf, GaussianFilter, Innovation, Kf};
+use argus_motion_models::Cv2D;
+use argus_sensors::{
+    CartesianPosition, ConversionMethod, MeasurementModel, Polar2D, RadarNoise, convert_polar,
+};
+
+use crate::error::CliError;
+
+/// KF on the 2-D CV model `[x, vx, y, vy]`, `Q = σ² Γ Γᵀ` (seed 000).
+pub(crate) type CvKf = Kf<Cv2D>;
+/// EKF on the same model (for polar plots).
+pub(crate) type CvEkf = Ekf<Cv2D>;
+
+/// A KF on a 2-D CV model with white-acceleration σ `sigma_a` (m/s²).
+///
+/// # Errors
+/// The model's error for a negative or non-finite σ.
+pub(crate) fn cv_kf(sigma_a: f64) -> Result<CvKf, CliError> {
+    Ok(Kf::new(Cv2D::discrete(sigma_a)?))
+}
+
+/// An EKF on a 2-D CV model.
+///
+/// # Errors
+/// As [`cv_kf`].
+pub(crate) fn cv_ekf(sigma_a: f64) -> Result<CvEkf, CliError> {
+    Ok(Ekf::new(Cv2D::discrete(sigma_a)?))
+}
+
+/// The unbiased converted measurement of a polar plot (relative to its sensor) and its
+/// covariance (Mo Longbin et al. 1998; Bar-Shalom, Li & Kirubarajan 2001 §10.4.3).
+///
+/// # Errors
+/// The sensor crate's error for a non-positive range or a bad σ.
+pub(crate) fn unbiased(
+    range: f64,
+    azimuth: f64,
+    sigma_r: f64,
+    sigma_az: f64,
+) -> Result<(Vector<2>, Matrix<2, 2>), CliError> {
+    let c = convert_polar(
+        range,
+        azimuth,
+        sigma_r,
+        sigma_az,
+        ConversionMethod::Unbiased,
+    )?;
+    Ok((c.position, c.covariance))
+}
+
+/// Position measurement `(x, y)` of `[x, vx, y, vy]` with covariance `r`.
+///
+/// # Errors
+/// The sensor crate's error for a covariance that is not SPD.
+pub(crate) fn position(r: Matrix<2, 2>) -> Result<CartesianPosition<4, 2>, CliError> {
+    Ok(CartesianPosition::<4, 2>::cv(r)?)
+}
+
+/// Polar radar at `sensor` with constant σ (range m, azimuth rad).
+///
+/// # Errors
+/// The sensor crate's error for bad values.
+pub(crate) fn polar(sensor: [f64; 2], sigma_r: f64, sigma_az: f64) -> Result<Polar2D<4>, CliError> {
+    Ok(Polar2D::<4>::cv(
+        sensor,
+        RadarNoise::constant(sigma_r, sigma_az, 0.0)?,
+    )?)
+}
+
+/// Predicts over `dt` (skipped when `dt = 0`, plots of one instant) and updates with `z`.
+///
+/// # Errors
+/// The filter's error.
+pub(crate) fn step<F: GaussianFilter<4>, Me: MeasurementModel<4, 2>>(
+    filter: &F,
+    est: &Gaussian<4>,
+    dt: f64,
+    meas: &Me,
+    z: &Vector<2>,
+) -> Result<(Gaussian<4>, Innovation<2>), argus_filters::FilterError> {
+    let pred = if dt == 0.0 {
+        *est
+    } else {
+        filter.predict(est, dt)?
+    };
+    filter.update(&pred, meas, z)
+}

@@ -1,0 +1,318 @@
+//! Drives the real `argus` binary on good and bad files.
+
+// Test helpers outside #[test] functions may unwrap: a failure is a test failure.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn argus(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_argus"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .unwrap()
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+const CONFIG: &str = r#"
+[[sensor]]
+id = 1
+position = [0.0, 0.0]
+sigma_range = 50.0
+sigma_azimuth_deg = 1.0
+
+[estimator]
+kind = "kf-converted"
+sigma_a = 0.5
+"#;
+
+const PLOTS: &str = "t,sensor,range,azimuth\n\
+0,1,10000,0.5\n\
+2,1,10010,0.51\n\
+4,1,10020,0.52\n\
+6,1,10030,0.53\n";
+
+/// Runs `argus track` with the given config and plots; returns (exit code, stderr).
+fn track(dir: &Path, config: &str, plots: &str) -> (Option<i32>, String) {
+    write(dir, "filter.toml", config);
+    write(dir, "plots.csv", plots);
+    let o = argus(
+        &[
+            "track",
+            "--config",
+            "filter.toml",
+            "--plots",
+            "plots.csv",
+            "--out",
+            "tracks.csv",
+        ],
+        dir,
+    );
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn scenarios_lists_cv_polar() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = argus(&["scenarios"], dir.path());
+    assert!(o.status.success());
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.lines().any(|l| l.starts_with("cv-polar ")), "{out}");
+}
+
+#[test]
+fn track_good_file_writes_tracks() {
+    let dir = tempfile::tempdir().unwrap();
+    let (code, err) = track(dir.path(), CONFIG, PLOTS);
+    assert_eq!(code, Some(0), "{err}");
+    let text = std::fs::read_to_string(dir.path().join("tracks.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("t,track,x,vx,y,vy,var_x,var_vx,var_y,var_vy")
+    );
+    // One row from the two-point start (t = 2) and one per later plot.
+    assert_eq!(lines.count(), 3);
+    // The two-point start at t = 2 puts x at the converted second plot:
+    // x = r cos θ / λ with λ = exp(−σθ²/2), σθ = 1° (Mo Longbin et al. 1998).
+    let row2: Vec<f64> = text
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let lam = (-0.5 * 1f64.to_radians().powi(2)).exp();
+    let x = 10010.0 * 0.51f64.cos() / lam;
+    assert!((row2[2] - x).abs() < 1e-6 * x, "{row2:?}");
+}
+
+#[test]
+fn track_ekf_on_polar_plots() {
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = CONFIG.replace("kf-converted", "ekf");
+    let (code, err) = track(dir.path(), &cfg, PLOTS);
+    assert_eq!(code, Some(0), "{err}");
+}
+
+/// Asserts exit code 2, a single `error:` line naming the file, and `needles` in it.
+fn assert_error(code: Option<i32>, err: &str, needles: &[&str]) {
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        !err.contains("panicked") && !err.contains("backtrace"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "one message expected: {err}");
+    assert!(err.starts_with("error: "), "{err}");
+    for n in needles {
+        assert!(err.contains(n), "missing '{n}' in: {err}");
+    }
+}
+
+#[test]
+fn bad_plot_files_name_file_line_and_field() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(&str, &[&str]); 6] = [
+        // Malformed row: too few fields on line 3.
+        (
+            "t,sensor,range,azimuth\n0,1,10000,0.5\n2,1,10010\n",
+            &["plots.csv:3", "malformed row"],
+        ),
+        // Unknown column in the header.
+        (
+            "t,sensor,range,azimuth,colour\n0,1,10000,0.5,red\n",
+            &["plots.csv:1", "field 'colour'", "unknown column"],
+        ),
+        // Non-numeric value.
+        (
+            "t,sensor,range,azimuth\n0,1,10000,0.5\n2,1,ten,0.51\n",
+            &["plots.csv:3", "field 'range'", "not a number"],
+        ),
+        // Non-finite value.
+        (
+            "t,sensor,range,azimuth\n0,1,10000,0.5\n2,1,10010,NaN\n",
+            &["plots.csv:3", "field 'azimuth'", "not finite"],
+        ),
+        // Time going backwards.
+        (
+            "t,sensor,range,azimuth\n0,1,10000,0.5\n2,1,10010,0.51\n1,1,10020,0.52\n",
+            &["plots.csv:4", "field 't'", "backwards"],
+        ),
+        // Unknown sensor.
+        (
+            "t,sensor,range,azimuth\n0,1,10000,0.5\n2,7,10010,0.51\n",
+            &["plots.csv:3", "field 'sensor'", "unknown sensor 7"],
+        ),
+    ];
+    for (plots, needles) in cases {
+        let (code, err) = track(dir.path(), CONFIG, plots);
+        assert_error(code, &err, needles);
+    }
+}
+
+#[test]
+fn bad_configs_name_file_line_and_field() {
+    let dir = tempfile::tempdir().unwrap();
+    // Negative variance (σ) on line 6.
+    let neg = CONFIG.replace("sigma_azimuth_deg = 1.0", "sigma_azimuth_deg = -1.0");
+    let (code, err) = track(dir.path(), &neg, PLOTS);
+    assert_error(
+        code,
+        &err,
+        &["filter.toml:6", "field 'sigma_azimuth_deg'", "non-negative"],
+    );
+    // Non-stochastic Markov matrix (row 2 sums to 1.1), on line 13.
+    let imm = r#"
+[[sensor]]
+id = 1
+position = [0.0, 0.0]
+sigma_range = 50.0
+sigma_azimuth_deg = 1.0
+
+[estimator]
+kind = "imm"
+models = [{ kind = "cv", sigma_a = 0.1 }, { kind = "ct", sigma_a = 0.5, rate_deg = 3.0 }]
+markov = [
+  [0.95, 0.05],
+  [0.20, 0.90],
+]
+"#;
+    let (code, err) = track(dir.path(), imm, PLOTS);
+    assert_error(
+        code,
+        &err,
+        &[
+            "filter.toml:11",
+            "field 'markov'",
+            "row 2 is not stochastic",
+        ],
+    );
+    // Unknown key: toml's own message with the line.
+    let unknown = CONFIG.replace("sigma_a = 0.5", "sigma_a = 0.5\nsigma_b = 1.0");
+    let (code, err) = track(dir.path(), &unknown, PLOTS);
+    assert_error(code, &err, &["filter.toml:", "sigma_b"]);
+}
+
+#[test]
+fn failed_run_keeps_previous_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let (code, err) = track(dir.path(), CONFIG, PLOTS);
+    assert_eq!(code, Some(0), "{err}");
+    let good = std::fs::read_to_string(dir.path().join("tracks.csv")).unwrap();
+    // A bad row late in the file: the run fails, tracks.csv is the good one, no temp left.
+    let bad = format!("{PLOTS}8,1,10040,inf\n");
+    let (code, err) = track(dir.path(), CONFIG, &bad);
+    assert_error(code, &err, &["plots.csv:6", "field 'azimuth'"]);
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("tracks.csv")).unwrap(),
+        good
+    );
+    let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().contains(".tmp-"))
+        .collect();
+    assert!(leftovers.is_empty());
+}
+
+#[test]
+fn run_cv_polar_small_campaign_writes_everything() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = argus(
+        &[
+            "run",
+            "cv-polar",
+            "--runs",
+            "0..8",
+            "--seed",
+            "3",
+            "--out",
+            "res",
+            "--set",
+            "duration=60",
+        ],
+        dir.path(),
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("ANEES (time average)"), "{stdout}");
+    for f in ["summary.json", "per_step.csv", "rmse_pos.svg", "anees.svg"] {
+        assert!(dir.path().join("res").join(f).exists(), "{f} missing");
+    }
+    let json = std::fs::read_to_string(dir.path().join("res/summary.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["runs"], serde_json::json!([0, 8]));
+    assert!(v["results"]["anees"]["ours"].as_f64().unwrap().is_finite());
+    // Bad --set: unknown key and out-of-range value, exit code 2.
+    let o = argus(&["run", "cv-polar", "--set", "speed=3"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("unknown parameter"));
+    let o = argus(&["run", "cv-polar", "--runs", "5..2"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn simulate_then_track_round_trip() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = argus(
+        &[
+            "simulate",
+            "cv-polar",
+            "--seed",
+            "9",
+            "--out",
+            "sim.csv",
+            "--set",
+            "duration=20",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let plots = std::fs::read_to_string(dir.path().join("sim.csv")).unwrap();
+    // duration 20 s, period 2 s, P_D = 1: 11 plots + header.
+    assert_eq!(plots.lines().count(), 12, "{plots}");
+    assert!(dir.path().join("sim.truth.csv").exists());
+    // The same seed gives the same file.
+    let o = argus(
+        &[
+            "simulate",
+            "cv-polar",
+            "--seed",
+            "9",
+            "--out",
+            "sim2.csv",
+            "--set",
+            "duration=20",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success());
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("sim2.csv")).unwrap(),
+        plots
+    );
+    write(dir.path(), "filter.toml", CONFIG);
+    let o = argus(
+        &[
+            "track",
+            "--config",
+            "filter.toml",
+            "--plots",
+            "sim.csv",
+            "--out",
+            "t.csv",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
