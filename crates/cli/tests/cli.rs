@@ -262,6 +262,28 @@ fn run_cv_polar_small_campaign_writes_everything() {
 }
 
 #[test]
+fn cv_polar_is_consistent_on_a_reduced_campaign() {
+    // Matched filter in the near-linear regime (the defaults): the time-averaged ANEES must
+    // lie in the per-step 95 % interval of 40 runs of a 4-dim NEES, χ²₁₆₀(0.025, 0.975)/40
+    // = [3.16, 4.94] (a time average varies less than one step, so this is conservative).
+    let dir = tempfile::tempdir().unwrap();
+    let o = argus(
+        &[
+            "run", "cv-polar", "--runs", "40", "--seed", "11", "--out", "r",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json = std::fs::read_to_string(dir.path().join("r/summary.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let anees = v["results"]["anees"]["ours"].as_f64().unwrap();
+    assert!((3.16..=4.94).contains(&anees), "ANEES {anees}");
+    // ANIS of a 2-dim NIS over 40 runs and ~75 steps: same reasoning, χ²₈₀/40 = [1.44, 2.63].
+    let anis = v["results"]["anis"]["ours"].as_f64().unwrap();
+    assert!((1.44..=2.63).contains(&anis), "ANIS {anis}");
+}
+
+#[test]
 fn simulate_then_track_round_trip() {
     let dir = tempfile::tempdir().unwrap();
     let o = argus(

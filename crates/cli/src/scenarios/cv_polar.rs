@@ -3,6 +3,12 @@
 //! al. 1998), two-point initialisation. Reported: RMSE and ANEES over time with the 95 %
 //! chi-square interval; a consistent filter has ANEES ≈ 4 (state dimension) and its
 //! RMSE matches the square root of its own position variance.
+//!
+//! Defaults: the truth is exactly CV, so the matched filter has no process noise
+//! (`sigma_a = 0`), and σθ = 0.1° keeps the conversion in its near-linear regime
+//! (`r σθ² / σr ≈ 0.002`). Larger σθ (`--set sigma_az_deg=1`) shows the unbiased
+//! conversion's covariance, evaluated at the measured plot, turning over-confident
+//! over many scans (ANEES ≈ 6.8 at 1°, seed 1, 100 runs).
 
 use argus_core_math::Vector;
 use argus_sim::{
@@ -92,14 +98,14 @@ impl Scenario for CvPolar {
             },
             ParamSpec {
                 key: "sigma_az_deg",
-                default: 1.0,
+                default: 0.1,
                 min: 1e-6,
                 max: 20.0,
                 help: "azimuth noise σ (deg)",
             },
             ParamSpec {
                 key: "sigma_a",
-                default: 0.01,
+                default: 0.0,
                 min: 0.0,
                 max: 1e3,
                 help: "filter's white-acceleration σ (m/s²); the truth has none",
@@ -381,6 +387,7 @@ impl Scenario for CvPolar {
             figures,
             notes: vec![
                 "no paper behind cv-polar: the reference column gives what a consistent filter must show".into(),
+                "steps are correlated in time, so the share of steps outside the per-step interval is not binomial".into(),
             ],
         })
     }
