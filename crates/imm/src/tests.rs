@@ -136,6 +136,12 @@ fn bad_input_is_rejected_and_the_estimate_is_untouched() {
     assert!(NoiseGrid::<2>::custom([[1.0, 0.0], [1.0, 1.0]]).is_err());
     assert!(MultiImm::new(paper_imm(), NoiseGrid::<5>::common(0.1).unwrap(), Some(1.5)).is_err());
     assert!(VariationalNoiseImm::new(paper_imm(), 0.0).is_err());
+    assert!(
+        VariationalNoiseImm::new(paper_imm(), 0.9)
+            .unwrap()
+            .with_iterations(0)
+            .is_err()
+    );
     let var = NoiseVariances::new(1.0, 1.0).unwrap();
     assert!(VariationalEstimate::new(est, var, -1.0).is_err());
     assert!(Embedded::<Motion, 4, 3>::new(Motion::Cv { sv: 1.0 }, 0.0).is_err());

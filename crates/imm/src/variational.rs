@@ -78,6 +78,7 @@ impl<const N: usize, const R: usize> VariationalEstimate<N, R> {
 pub struct VariationalNoiseImm<F, const N: usize, const R: usize> {
     imm: Imm<F, N, R>,
     forgetting: f64,
+    iterations: usize,
 }
 
 impl<F: GaussianFilter<N>, const N: usize, const R: usize> VariationalNoiseImm<F, N, R> {
@@ -93,7 +94,29 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> VariationalNoiseImm<F
                 reason: "must be in (0, 1]",
             });
         }
-        Ok(Self { imm, forgetting })
+        Ok(Self {
+            imm,
+            forgetting,
+            iterations: 1,
+        })
+    }
+
+    /// The number of variational iterations per plot (default 1): each re-runs the IMM
+    /// update (not the prediction) with the variances of the previous iteration, as in
+    /// Särkkä & Nummenmaa's VB-AKF. Cost: one prediction and `iterations` updates per mode.
+    ///
+    /// # Errors
+    /// [`ImmError::InvalidParameter`] for 0.
+    pub fn with_iterations(mut self, iterations: usize) -> Result<Self, ImmError> {
+        if iterations == 0 {
+            return Err(ImmError::InvalidParameter {
+                what: "variational iterations",
+                value: 0.0,
+                reason: "at least one",
+            });
+        }
+        self.iterations = iterations;
+        Ok(self)
     }
 
     /// The IMM.
@@ -115,30 +138,40 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> VariationalNoiseImm<F
         plot: &PolarPlot,
         conversion: &C,
     ) -> Result<(VariationalEstimate<N, R>, ImmUpdate<N, R>), ImmError> {
-        let var = est.variances()?;
-        let (meas, z) = conversion.convert(plot, &var)?;
-        let upd = self.imm.step(&est.imm, dt, &meas, &z)?;
-        let post = upd.estimate.combined()?;
-        let p = conversion.position(post.mean());
-        let rng = p.norm();
-        if !(rng.is_finite() && rng > 0.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "estimated range",
-                value: rng,
-                reason: "the polar residual needs a target away from the radar",
-            });
-        }
-        let (c, s) = (p[0] / rng, p[1] / rng);
-        let J = Matrix::<2, 2>::new(c, s, -s / rng, c / rng);
-        let JPJ = J * conversion.position_cov(post.cov()) * J.transpose();
-        let e_r = plot.range() - rng;
-        let e_t = wrap_angle(plot.azimuth() - p[1].atan2(p[0]));
         let rho = self.forgetting;
         let alpha = rho * est.alpha + 0.5;
-        let beta = [
-            rho * est.beta[0] + 0.5 * (e_r * e_r + JPJ[(0, 0)]),
-            rho * est.beta[1] + 0.5 * (e_t * e_t + JPJ[(1, 1)]),
-        ];
+        let mut var = est.variances()?;
+        let pred = self.imm.predict(&est.imm, dt)?;
+        let mut beta = est.beta;
+        let mut upd = None;
+        for _ in 0..self.iterations {
+            let (meas, z) = conversion.convert(plot, &var)?;
+            let u = self.imm.update(&pred, &meas, &z)?;
+            let post = u.estimate.combined()?;
+            let p = conversion.position(post.mean());
+            let rng = p.norm();
+            if !(rng.is_finite() && rng > 0.0) {
+                return Err(ImmError::InvalidParameter {
+                    what: "estimated range",
+                    value: rng,
+                    reason: "the polar residual needs a target away from the radar",
+                });
+            }
+            let (c, s) = (p[0] / rng, p[1] / rng);
+            let J = Matrix::<2, 2>::new(c, s, -s / rng, c / rng);
+            let JPJ = J * conversion.position_cov(post.cov()) * J.transpose();
+            let e_r = plot.range() - rng;
+            let e_t = wrap_angle(plot.azimuth() - p[1].atan2(p[0]));
+            beta = [
+                rho * est.beta[0] + 0.5 * (e_r * e_r + JPJ[(0, 0)]),
+                rho * est.beta[1] + 0.5 * (e_t * e_t + JPJ[(1, 1)]),
+            ];
+            var = NoiseVariances::new(beta[0] / alpha, beta[1] / alpha)?;
+            upd = Some(u);
+        }
+        let upd = upd.ok_or(ImmError::Empty {
+            what: "variational iterations",
+        })?;
         let next = VariationalEstimate {
             imm: upd.estimate,
             alpha,
