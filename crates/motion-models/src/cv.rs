@@ -9,7 +9,8 @@
 //!
 //! The axes are stacked in the interleaved order `[x, vx]`, `[x, vx, y, vy]`,
 //! `[x, vx, y, vy, z, vz]`, so `F` and `Q` are block diagonal with one `2 × 2`
-//! block per axis. Two process-noise models are offered by [`CvNoise`].
+//! block per axis. Three process-noise models are offered by [`CvNoise`]
+//! (the third, velocity-only per step, is seed 001's `Q = diag(0, q)`).
 //!
 //! # References
 //! Bar-Shalom, Li & Kirubarajan (2001), *Estimation with Applications to Tracking and
@@ -50,6 +51,20 @@ pub enum CvNoise {
         /// Power spectral density of the acceleration, m²/s³.
         q_tilde: f64,
     },
+    /// Velocity-only noise of variance `q` ((m/s)²) per step, whatever the interval
+    /// (seed 001 §5.1: `Q = 0.5` entering the velocity through `G = diag(0, 1)`):
+    ///
+    /// ```text
+    /// Q = [[0, 0],
+    ///      [0, q]]
+    /// ```
+    ///
+    /// Only positive semi-definite: a filter must get its positive definiteness from the
+    /// prior and the plots.
+    VelocityPerStep {
+        /// Variance of the velocity increment per step, (m/s)².
+        q: f64,
+    },
 }
 
 impl CvNoise {
@@ -61,6 +76,9 @@ impl CvNoise {
             }
             Self::ContinuousWhiteAcceleration { q_tilde } => {
                 check_non_negative("q_tilde", q_tilde)?;
+            }
+            Self::VelocityPerStep { q } => {
+                check_non_negative("q", q)?;
             }
         }
         Ok(self)
@@ -80,6 +98,7 @@ impl CvNoise {
             Self::ContinuousWhiteAcceleration { q_tilde } => {
                 Matrix::<2, 2>::new(t3 / 3.0, t2 / 2.0, t2 / 2.0, dt) * q_tilde
             }
+            Self::VelocityPerStep { q } => Matrix::<2, 2>::new(0.0, 0.0, 0.0, q),
         }
     }
 }
@@ -122,6 +141,14 @@ macro_rules! cv_model {
             /// As [`Self::new`].
             pub fn continuous(q_tilde: f64) -> Result<Self, MotionError> {
                 Self::new(CvNoise::ContinuousWhiteAcceleration { q_tilde })
+            }
+
+            /// Velocity-only noise of variance `q` ((m/s)²) per step (seed 001 §5.1).
+            ///
+            /// # Errors
+            /// As [`Self::new`].
+            pub fn velocity_per_step(q: f64) -> Result<Self, MotionError> {
+                Self::new(CvNoise::VelocityPerStep { q })
             }
 
             /// The process-noise model.
@@ -195,6 +222,30 @@ mod tests {
         // Equals σ² Γ Γᵀ with Γ = [T²/2, T]ᵀ (seed 000, seed 003).
         let g = Vector::<2>::new(4.5, 3.0);
         assert!((q - g * g.transpose() * 4.0).abs().max() < 1e-12);
+    }
+
+    #[test]
+    fn velocity_per_step_q() {
+        // Seed 001 §5.1: Q = diag(0, 0.5) per step, independent of T (here T = 0.05 and 3).
+        let m = Cv1D::velocity_per_step(0.5).unwrap();
+        for dt in [0.05, 3.0] {
+            let q = m.process_noise(&Vector::<2>::zeros(), dt);
+            assert!((q - Matrix::<2, 2>::new(0.0, 0.0, 0.0, 0.5)).abs().max() < 1e-15);
+        }
+        let q2 = Cv2D::velocity_per_step(0.5)
+            .unwrap()
+            .process_noise(&Vector::<4>::zeros(), 1.0);
+        assert!(
+            (q2 - Matrix::<4, 4>::from_diagonal(&Vector::<4>::new(0.0, 0.5, 0.0, 0.5)))
+                .abs()
+                .max()
+                < 1e-15
+        );
+        assert!(matches!(
+            Cv1D::velocity_per_step(-1.0),
+            Err(MotionError::Negative { .. })
+        ));
+        assert!(Cv1D::velocity_per_step(f64::NAN).is_err());
     }
 
     #[test]
