@@ -249,6 +249,8 @@ pub struct GlrtOutcome<const N: usize, const P: usize> {
 #[derive(Debug, Clone)]
 pub struct Glrt<const N: usize, const M: usize, const P: usize> {
     config: GlrtConfig,
+    prior_info: Matrix<P, P>,
+    has_prior: bool,
     current: Vec<Hypothesis<N, P>>,
     next: Vec<Hypothesis<N, P>>,
 }
@@ -261,9 +263,34 @@ impl<const N: usize, const M: usize, const P: usize> Glrt<N, M, P> {
         let cap = config.max_age + 1;
         Self {
             config,
+            prior_info: Matrix::zeros(),
+            has_prior: false,
             current: Vec::with_capacity(cap),
             next: Vec::with_capacity(cap),
         }
+    }
+
+    /// The same detector with a prior information `Λ₀ = L(0)⁻¹` (positive definite) on a
+    /// zero-mean input: a detection's estimate becomes `û = (C + Λ₀)⁻¹ d` with covariance
+    /// `(C + Λ₀)⁻¹` and information `C + Λ₀` — seed 001 eq 4-6 with a finite `L(0)` and
+    /// `u(0) = 0`, applied at the detection. The detection statistic stays the paper's
+    /// `dᵀ C⁻¹ d` (eq 3-6). Use it when part of the input is barely observable (a 2-D
+    /// acceleration seen through bearings only), where `C⁻¹ d` is unbounded in that part.
+    ///
+    /// # Errors
+    /// [`ManeuverError::Math`] when `Λ₀` is non-finite, not symmetric or not positive definite.
+    pub fn with_input_prior(mut self, info: Matrix<P, P>) -> Result<Self, ManeuverError> {
+        check_finite_matrix(&info, "GLRT input prior information")?;
+        SpdFactor::new(&info, "GLRT input prior information")?;
+        self.prior_info = info;
+        self.has_prior = true;
+        Ok(self)
+    }
+
+    /// The prior information on the input (zero unless set by [`Glrt::with_input_prior`]).
+    #[must_use]
+    pub fn input_prior(&self) -> &Matrix<P, P> {
+        &self.prior_info
     }
 
     /// The configuration.
@@ -333,13 +360,23 @@ impl<const N: usize, const M: usize, const P: usize> Glrt<N, M, P> {
         let max_statistic = best.as_ref().map(|b| (b.0, b.1));
         let detection = match best {
             Some((l, age, i, cf)) if l >= self.config.threshold => self.next.get(i).and_then(|h| {
+                let information = h.c + self.prior_info;
+                let cf = if !self.has_prior {
+                    cf
+                } else {
+                    SpdFactor::new_symmetric(
+                        &argus_core_math::symmetrize(&information),
+                        "GLRT C + prior",
+                    )
+                    .ok()?
+                };
                 let input = cf.solve_vector(&h.d);
                 let det = Detection {
                     age,
                     statistic: l,
                     input,
                     input_cov: cf.inverse(),
-                    information: h.c,
+                    information,
                     sensitivity: h.deviation - h.response,
                 };
                 let finite = det.input.iter().all(|x| x.is_finite())

@@ -24,6 +24,8 @@
 //! - Lee & Kim (1987), seed 001, sections 3.2 and 4, eqs 3-11, 3-12, 4-3 to 4-7.
 //! - Willsky & Jones (1976), GLR detection of jumps in linear systems.
 
+pub mod drag_bearing;
+
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Innovation, check_dt};
 use argus_motion_models::MotionModel;
@@ -118,6 +120,16 @@ impl<const N: usize, const M: usize, const P: usize> ManeuverState<N, M, P> {
             mras: None,
             steps: 0,
         }
+    }
+
+    /// The same track with a prior information `Λ₀` on the input for the detector's
+    /// estimate (see [`Glrt::with_input_prior`]).
+    ///
+    /// # Errors
+    /// As [`Glrt::with_input_prior`].
+    pub fn with_input_prior(mut self, info: Matrix<P, P>) -> Result<Self, ManeuverError> {
+        self.glrt = self.glrt.with_input_prior(info)?;
+        Ok(self)
     }
 
     /// The compensated estimate (the filter's own plus the MRAS term, if running).

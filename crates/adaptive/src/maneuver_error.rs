@@ -2,6 +2,8 @@
 
 use argus_core_math::MathError;
 use argus_filters::FilterError;
+use argus_motion_models::MotionError;
+use argus_sensors::SensorError;
 
 /// What went wrong in a GLRT, MRAS or adaptive-filter call. The detector, the
 /// estimator and the estimate passed in are never modified by a failed call.
@@ -14,6 +16,12 @@ pub enum ManeuverError {
     /// A numerical check failed on a quantity handed to the detector.
     #[error(transparent)]
     Math(#[from] MathError),
+    /// A motion model of an experiment could not be built.
+    #[error(transparent)]
+    Motion(#[from] MotionError),
+    /// A sensor model of an experiment could not be built.
+    #[error(transparent)]
+    Sensor(#[from] SensorError),
     /// A configuration parameter is outside its domain.
     #[error("parameter {what} = {value} is invalid: {reason}")]
     InvalidParameter {

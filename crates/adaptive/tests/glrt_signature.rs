@@ -187,6 +187,11 @@ fn mras_with_infinite_initial_gain_equals_the_glrt_ml_estimate() {
     let onset = 40; // first step with the input on (t = 2.0–2.05 s)
     let mut glrt =
         Glrt::<2, 1, 1>::new(GlrtConfig::new(15, 15, 1e-12, FailureKind::Persistent).unwrap());
+    // The same detector with a prior information Λ₀ = 1/4 on the input (L(0) = 4, u(0) = 0).
+    let mut glrt_prior =
+        Glrt::<2, 1, 1>::new(GlrtConfig::new(15, 15, 1e-12, FailureKind::Persistent).unwrap())
+            .with_input_prior(Matrix::<1, 1>::new(0.25))
+            .unwrap();
     let mut mras: Mras<2, 1> = Mras::new_ml();
     let prior_l0 = Matrix::<1, 1>::new(4.0);
     let u0 = Vector::<1>::new(100.0);
@@ -212,6 +217,8 @@ fn mras_with_infinite_initial_gain_equals_the_glrt_ml_estimate() {
         };
         let out = glrt.step(&lin).unwrap();
         glrt.commit();
+        let out_prior = glrt_prior.step(&lin).unwrap();
+        glrt_prior.commit();
         if k >= onset {
             // Independent regressor: D ← Φ D + Γ, G = H (D − Φ F), F ← Φ F + K G (eqs 3-3, 3-4).
             let started = k > onset;
@@ -254,6 +261,17 @@ fn mras_with_infinite_initial_gain_equals_the_glrt_ml_estimate() {
                 det.input
             );
             assert!((l_ml[(0, 0)] - det.input_cov[(0, 0)]).abs() < 1e-9 * l_ml[(0, 0)]);
+            // With the prior: û = (Λ₀ + C)⁻¹ d, covariance (Λ₀ + C)⁻¹ (eq 4-6, finite L(0),
+            // u(0) = 0), from the independent sums; the statistic stays dᵀ C⁻¹ d = d²/C.
+            let det_p = out_prior.detection.expect("tiny threshold");
+            let closed = d / (0.25 + c);
+            assert!(
+                (det_p.input[0] - closed).abs() < 1e-9 * closed.abs(),
+                "prior estimate"
+            );
+            assert!((det_p.input_cov[(0, 0)] - 1.0 / (0.25 + c)).abs() < 1e-9 / (0.25 + c));
+            assert!((det_p.statistic - d * d / c).abs() < 1e-9 * det_p.statistic);
+            assert!((det_p.statistic - det.statistic).abs() < 1e-9 * det.statistic);
             compared += 1;
         }
     }
@@ -291,6 +309,17 @@ fn bad_configuration_and_inputs_are_rejected_and_leave_state_unchanged() {
         .is_err()
     );
     assert!(Mras::<2, 1>::with_prior(Vector::<1>::new(0.0), &Matrix::<1, 1>::new(-1.0)).is_err());
+    // A GLRT input prior must be finite and positive definite.
+    let cfg1 = GlrtConfig::new(20, 5, 20.0, FailureKind::Persistent).unwrap();
+    for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        assert!(
+            matches!(
+                Glrt::<2, 1, 1>::new(cfg1).with_input_prior(Matrix::<1, 1>::new(bad)),
+                Err(ManeuverError::Math(_))
+            ),
+            "{bad}"
+        );
+    }
     assert!(
         Mras::<2, 1>::with_prior(Vector::<1>::new(f64::NAN), &Matrix::<1, 1>::new(1.0)).is_err()
     );
