@@ -25,6 +25,7 @@
 //! - Willsky & Jones (1976), GLR detection of jumps in linear systems.
 
 pub mod drag_bearing;
+pub mod maneuver_1d;
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Innovation, check_dt};
