@@ -1,6 +1,7 @@
 //! The registered scenarios. To add one: write `scenarios/<name>.rs` implementing
 //! [`Scenario`](crate::scenario::Scenario) and add one line to [`all`].
 
+mod clutter;
 mod cv_polar;
 
 use crate::scenario::Scenario;
@@ -9,6 +10,7 @@ use crate::scenario::Scenario;
 pub(crate) fn all() -> Vec<Box<dyn Scenario>> {
     vec![
         Box::new(cv_polar::CvPolar),
+        Box::new(clutter::Clutter),
         // One line per scenario, e.g. `Box::new(gimpo::Gimpo),`
     ]
 }
