@@ -64,13 +64,20 @@ fn benches(c: &mut Criterion) {
     .unwrap();
     let mest = MultiImmEstimate::new(start(), var);
     g.bench_function("multi_imm_5x3_step", |b| {
-        b.iter(|| multi.step(black_box(&mest), 5.0, black_box(&plot), &conv).unwrap());
+        b.iter(|| {
+            multi
+                .step(black_box(&mest), 5.0, black_box(&plot), &conv)
+                .unwrap()
+        });
     });
 
     let vb = VariationalNoiseImm::new(paper_imm(), 0.995).unwrap();
     let vest = VariationalEstimate::new(start(), var, 2.0).unwrap();
     g.bench_function("variational_imm_step", |b| {
-        b.iter(|| vb.step(black_box(&vest), 5.0, black_box(&plot), &conv).unwrap());
+        b.iter(|| {
+            vb.step(black_box(&vest), 5.0, black_box(&plot), &conv)
+                .unwrap()
+        });
     });
     g.finish();
 }

@@ -2,7 +2,7 @@
 //!
 //! - `cargo xtask test`: `cargo fmt --all --check`, `cargo clippy --workspace --all-targets -- -D warnings`,
 //!   `cargo test --workspace` — the README's test command and what CI runs.
-//! - `cargo xtask bench [FILTER]`: runs the criterion benches and writes `docs/BENCHMARKS.md`
+//! - `cargo xtask bench [--quick] [FILTER]`: runs the criterion benches and writes `docs/BENCHMARKS.md`
 //!   (bench, median, machine) from criterion's `estimates.json` files.
 
 use std::fmt::Write as _;
@@ -13,8 +13,16 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("test") => test(),
-        Some("bench") => bench(args.get(1).map(String::as_str)),
-        _ => Err("usage: cargo xtask <test | bench [FILTER]>".to_owned()),
+        Some("bench") => {
+            let quick = args.iter().any(|a| a == "--quick");
+            let filter = args
+                .iter()
+                .skip(1)
+                .find(|a| !a.starts_with("--"))
+                .map(String::as_str);
+            bench(filter, quick)
+        }
+        _ => Err("usage: cargo xtask <test | bench [--quick] [FILTER]>".to_owned()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -26,7 +34,9 @@ fn main() -> ExitCode {
 }
 
 fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
 }
 
 fn cargo(args: &[&str]) -> Result<(), String> {
@@ -37,19 +47,34 @@ fn cargo(args: &[&str]) -> Result<(), String> {
         .current_dir(workspace_root())
         .status()
         .map_err(|e| format!("cannot run {cargo}: {e}"))?;
-    if status.success() { Ok(()) } else { Err(format!("`cargo {}` failed ({status})", args.join(" "))) }
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("`cargo {}` failed ({status})", args.join(" ")))
+    }
 }
 
 fn test() -> Result<(), String> {
     cargo(&["fmt", "--all", "--check"])?;
-    cargo(&["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"])?;
+    cargo(&[
+        "clippy",
+        "--workspace",
+        "--all-targets",
+        "--",
+        "-D",
+        "warnings",
+    ])?;
     cargo(&["test", "--workspace"])
 }
 
-fn bench(filter: Option<&str>) -> Result<(), String> {
-    let mut args = vec!["bench", "-p", "argus-benches"];
+fn bench(filter: Option<&str>, quick: bool) -> Result<(), String> {
+    let mut args = vec!["bench", "-p", "argus-benches", "--"];
+    if quick {
+        // Shorter runs for a quick table: 1 s warm-up, 2 s measurement per bench.
+        args.extend(["--warm-up-time", "1", "--measurement-time", "2"]);
+    }
     if let Some(f) = filter {
-        args.extend(["--", f]);
+        args.push(f);
     }
     cargo(&args)?;
     let root = workspace_root();
@@ -69,7 +94,9 @@ fn bench(filter: Option<&str>) -> Result<(), String> {
 
 /// Walks `target/criterion/**/new/estimates.json` and reads the median point estimate (ns).
 fn collect_estimates(base: &Path, dir: &Path, rows: &mut Vec<(String, f64)>) {
-    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
     for entry in entries.flatten() {
         let path = entry.path();
         if !path.is_dir() {
@@ -77,13 +104,20 @@ fn collect_estimates(base: &Path, dir: &Path, rows: &mut Vec<(String, f64)>) {
         }
         if path.file_name().is_some_and(|n| n == "new") {
             let est = path.join("estimates.json");
-            if let (Ok(text), Some(parent)) = (std::fs::read_to_string(&est), path.parent()) {
-                if let Some(median) = median_ns(&text) {
-                    let name = parent.strip_prefix(base).unwrap_or(parent).to_string_lossy().replace('\\', "/");
-                    rows.push((name, median));
-                }
+            if let (Ok(text), Some(parent)) = (std::fs::read_to_string(&est), path.parent())
+                && let Some(median) = median_ns(&text)
+            {
+                let name = parent
+                    .strip_prefix(base)
+                    .unwrap_or(parent)
+                    .to_string_lossy()
+                    .replace('\\', "/");
+                rows.push((name, median));
             }
-        } else if path.file_name().is_none_or(|n| n != "report" && n != "base" && n != "change") {
+        } else if path
+            .file_name()
+            .is_none_or(|n| n != "report" && n != "base" && n != "change")
+        {
             collect_estimates(base, &path, rows);
         }
     }
@@ -114,7 +148,11 @@ fn human(ns: f64) -> String {
 fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_owned()))
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_owned())
+        })
         .unwrap_or_else(|| "unknown CPU".to_owned());
     let cores = std::thread::available_parallelism().map_or(0, std::num::NonZero::get);
     let rustc = Command::new("rustc")
@@ -123,13 +161,20 @@ fn machine() -> String {
         .ok()
         .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_owned())
         .unwrap_or_default();
-    format!("{cpu}, {cores} cores, {} {}, {rustc}", std::env::consts::OS, std::env::consts::ARCH)
+    format!(
+        "{cpu}, {cores} cores, {} {}, {rustc}",
+        std::env::consts::OS,
+        std::env::consts::ARCH
+    )
 }
 
 fn render(rows: &[(String, f64)], machine: &str) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# Benchmarks\n");
-    let _ = writeln!(s, "Written by `cargo xtask bench` from criterion's median estimates. Do not edit by hand.\n");
+    let _ = writeln!(
+        s,
+        "Written by `cargo xtask bench` from criterion's median estimates. Do not edit by hand.\n"
+    );
     let _ = writeln!(s, "Machine: {machine}\n");
     let _ = writeln!(s, "| bench | median |\n|---|---|");
     for (name, ns) in rows {

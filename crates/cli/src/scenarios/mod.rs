@@ -1,8 +1,10 @@
 //! The registered scenarios. To add one: write `scenarios/<name>.rs` implementing
 //! [`Scenario`](crate::scenario::Scenario) and add one line to [`all`].
 
-mod clutter;
+mod bias_32;
 mod cv_polar;
+mod gimpo;
+mod rbs_landing;
 
 use crate::scenario::Scenario;
 
@@ -10,7 +12,9 @@ use crate::scenario::Scenario;
 pub(crate) fn all() -> Vec<Box<dyn Scenario>> {
     vec![
         Box::new(cv_polar::CvPolar),
-        Box::new(clutter::Clutter),
+        Box::new(gimpo::Gimpo),
+        Box::new(rbs_landing::RbsLanding),
+        Box::new(bias_32::Bias32),
         // One line per scenario, e.g. `Box::new(gimpo::Gimpo),`
     ]
 }
