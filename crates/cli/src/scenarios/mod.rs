@@ -2,6 +2,7 @@
 //! [`Scenario`](crate::scenario::Scenario) and add one line to [`all`].
 
 mod bias_32;
+mod clutter;
 mod cv_polar;
 mod gimpo;
 mod rbs_landing;
@@ -15,6 +16,7 @@ pub(crate) fn all() -> Vec<Box<dyn Scenario>> {
         Box::new(gimpo::Gimpo),
         Box::new(rbs_landing::RbsLanding),
         Box::new(bias_32::Bias32),
+        Box::new(clutter::Clutter),
         // One line per scenario, e.g. `Box::new(gimpo::Gimpo),`
     ]
 }
