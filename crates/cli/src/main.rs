@@ -4,6 +4,7 @@
 //! Errors are printed once (`error: <file>:<line>: field '<f>': <what>`) and the process
 //! exits with code 2; nothing a user feeds in panics.
 
+mod campaign;
 mod error;
 mod estimator;
 mod output;
@@ -53,6 +54,18 @@ enum Command {
         /// Parameter override `key=value` (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+    },
+    /// Merges split campaigns (`argus run --runs A..B` into several directories):
+    /// recomputes the report from the union of their per-run files.
+    Merge {
+        /// Scenario name.
+        scenario: String,
+        /// Output directories of `argus run` (each holds `runs/<A>-<B>.jsonl`).
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Output directory for the merged report and per-run file.
+        #[arg(long)]
+        out: PathBuf,
     },
     /// Writes one run's plots (and truth) of a scenario as CSV.
     Simulate {
@@ -142,19 +155,81 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 params,
                 progress,
             };
-            let report = sc.run(&ctx)?;
+            let (report, runs_file) = if let Some(sp) = sc.splittable() {
+                let records = sp.records(&ctx)?;
+                let text = campaign::runs_text(sc.name(), seed, &runs, &ctx.params, &records)?;
+                let report =
+                    sp.reduce_records(&ctx.params, &campaign::in_process(records, &runs))?;
+                (report, Some(text))
+            } else {
+                (sc.run(&ctx)?, None)
+            };
             let info = RunInfo {
                 scenario: sc.name(),
                 seed,
                 runs: runs.clone(),
                 params: ctx.params.as_map(),
             };
-            let files = report.write(&out, &info)?;
+            let mut files = report.write(&out, &info)?;
+            if let Some(text) = runs_file {
+                let path = campaign::runs_file(&out, &runs);
+                output::write_atomic(&path, text.as_bytes())?;
+                files.push(path.display().to_string());
+            }
             println!(
                 "argus run {} --seed {seed} --runs {}..{}",
                 sc.name(),
                 runs.start,
                 runs.end
+            );
+            print!("{}", report.table_text());
+            for f in files {
+                println!("wrote {f}");
+            }
+        }
+        Command::Merge {
+            scenario,
+            dirs,
+            out,
+        } => {
+            let sc = find(&scenario)?;
+            let sp = sc.splittable().ok_or_else(|| {
+                CliError::Usage(format!(
+                    "scenario '{}' does not write per-run records yet: run it whole",
+                    sc.name()
+                ))
+            })?;
+            let same = |a: &PathBuf| match (std::fs::canonicalize(a), std::fs::canonicalize(&out)) {
+                (Ok(x), Ok(y)) => x == y,
+                _ => false,
+            };
+            if let Some(d) = dirs.iter().find(|d| same(d)) {
+                return Err(CliError::Usage(format!(
+                    "--out {} is one of the merged directories: choose another",
+                    d.display()
+                )));
+            }
+            let m = campaign::read_dirs(sc.name(), &sc.params(), &dirs)?;
+            let report = sp.reduce_records(&m.params, &m.records)?;
+            let info = RunInfo {
+                scenario: sc.name(),
+                seed: m.seed,
+                runs: m.runs.clone(),
+                params: m.params.as_map(),
+            };
+            let records: Vec<String> = m.records.iter().map(|r| r.json.clone()).collect();
+            let text = campaign::runs_text(sc.name(), m.seed, &m.runs, &m.params, &records)?;
+            let mut files = report.write(&out, &info)?;
+            let path = campaign::runs_file(&out, &m.runs);
+            output::write_atomic(&path, text.as_bytes())?;
+            files.push(path.display().to_string());
+            println!(
+                "argus merge {} --seed {} --runs {}..{} ({} files)",
+                sc.name(),
+                m.seed,
+                m.runs.start,
+                m.runs.end,
+                m.files.len()
             );
             print!("{}", report.table_text());
             for f in files {

@@ -31,8 +31,26 @@ const KNOWN: [&str; 16] = [
 pub(crate) enum FileValue {
     /// Range (m), azimuth (rad).
     Polar { range: f64, azimuth: f64 },
+    /// Range (m), azimuth (rad), elevation (rad).
+    Spherical {
+        range: f64,
+        azimuth: f64,
+        elevation: f64,
+    },
     /// Position (m) and covariance `[r_xx, r_xy, r_yy]` (m²).
     Cartesian { x: f64, y: f64, cov: [f64; 3] },
+    /// 3-D position (m) and covariance `[r_xx, r_xy, r_xz, r_yy, r_yz, r_zz]` (m²).
+    Cartesian3 { p: [f64; 3], cov: [f64; 6] },
+}
+
+impl FileValue {
+    /// Spatial dimension of the plot: 2 or 3.
+    pub(crate) fn dim(&self) -> usize {
+        match self {
+            Self::Polar { .. } | Self::Cartesian { .. } => 2,
+            Self::Spherical { .. } | Self::Cartesian3 { .. } => 3,
+        }
+    }
 }
 
 /// One plot read from a file.
@@ -45,8 +63,9 @@ pub(crate) struct FilePlot {
     pub(crate) value: FileValue,
 }
 
-/// Reads a plot file: header required, columns known, numbers finite, time
-/// non-decreasing. 3-D columns (`elevation`, `z`) are recognised and rejected for now.
+/// Reads a plot file: header required, columns known, one layout (polar, spherical,
+/// Cartesian 2-D or 3-D), numbers finite, ranges positive, covariances positive definite,
+/// time non-decreasing.
 ///
 /// # Errors
 /// [`CliError::Input`] naming the file, line and field; [`CliError::Io`].
@@ -80,35 +99,38 @@ pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
             ));
         }
     }
-    for name in ["elevation", "z", "r_xz", "r_yz", "r_zz"] {
-        if idx(name).is_some() {
-            return Err(CliError::input(
-                path,
-                Some(1),
-                Some(name),
-                "3-D plots are not supported by `argus track` yet (2-D polar or Cartesian only)",
-            ));
-        }
-    }
-    let polar = idx("range").is_some() || idx("azimuth").is_some();
-    let cart = idx("x").is_some() || idx("y").is_some();
-    let need: &[&str] = match (polar, cart) {
-        (true, false) => &["range", "azimuth"],
-        (false, true) => &["x", "y", "r_xx", "r_xy", "r_yy"],
-        (true, true) => {
-            return Err(CliError::input(
-                path,
-                Some(1),
-                None,
-                "a file holds either polar (range, azimuth) or Cartesian (x, y) plots, not both",
-            ));
-        }
-        (false, false) => {
+    let polar = ["range", "azimuth", "elevation"]
+        .iter()
+        .any(|c| idx(c).is_some());
+    let cart = [
+        "x", "y", "z", "r_xx", "r_xy", "r_yy", "r_xz", "r_yz", "r_zz",
+    ]
+    .iter()
+    .any(|c| idx(c).is_some());
+    let three_d = ["elevation", "z", "r_xz", "r_yz", "r_zz"]
+        .iter()
+        .any(|c| idx(c).is_some());
+    let need: &[&str] = match (polar, cart, three_d) {
+        (true, false, false) => &["range", "azimuth"],
+        (true, false, true) => &["range", "azimuth", "elevation"],
+        (false, true, false) => &["x", "y", "r_xx", "r_xy", "r_yy"],
+        (false, true, true) => &[
+            "x", "y", "z", "r_xx", "r_xy", "r_xz", "r_yy", "r_yz", "r_zz",
+        ],
+        (true, true, _) => {
             return Err(CliError::input(
                 path,
                 Some(1),
                 None,
-                "no measurement columns: expected range,azimuth or x,y,r_xx,r_xy,r_yy",
+                "a file holds either polar/spherical (range, azimuth[, elevation]) or Cartesian (x, y[, z]) plots, not both",
+            ));
+        }
+        (false, false, _) => {
+            return Err(CliError::input(
+                path,
+                Some(1),
+                None,
+                "no measurement columns: expected range,azimuth[,elevation] or x,y,r_xx,r_xy,r_yy (3-D: x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz)",
             ));
         }
     };
@@ -172,17 +194,53 @@ pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
         }
         let value = if polar {
             let range = num("range")?;
-            if range < 0.0 {
+            if range <= 0.0 {
                 return Err(CliError::input(
                     path,
                     Some(line),
                     Some("range"),
-                    "negative range",
+                    format!("range {range} must be positive"),
                 ));
             }
-            FileValue::Polar {
-                range,
-                azimuth: num("azimuth")?,
+            let azimuth = num("azimuth")?;
+            if three_d {
+                let elevation = num("elevation")?;
+                if elevation.abs() > std::f64::consts::FRAC_PI_2 {
+                    return Err(CliError::input(
+                        path,
+                        Some(line),
+                        Some("elevation"),
+                        format!("elevation {elevation} rad lies outside [-π/2, π/2]"),
+                    ));
+                }
+                FileValue::Spherical {
+                    range,
+                    azimuth,
+                    elevation,
+                }
+            } else {
+                FileValue::Polar { range, azimuth }
+            }
+        } else if three_d {
+            let cov = [
+                num("r_xx")?,
+                num("r_xy")?,
+                num("r_xz")?,
+                num("r_yy")?,
+                num("r_yz")?,
+                num("r_zz")?,
+            ];
+            if !positive_definite_3(&cov) {
+                return Err(CliError::input(
+                    path,
+                    Some(line),
+                    Some("r_xx"),
+                    "covariance [r_xx r_xy r_xz; r_xy r_yy r_yz; r_xz r_yz r_zz] is not positive definite",
+                ));
+            }
+            FileValue::Cartesian3 {
+                p: [num("x")?, num("y")?, num("z")?],
+                cov,
             }
         } else {
             let cov = [num("r_xx")?, num("r_xy")?, num("r_yy")?];
@@ -210,6 +268,15 @@ pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
     Ok(out)
 }
 
+/// Whether the symmetric matrix with upper triangle `[xx, xy, xz, yy, yz, zz]` is
+/// positive definite (Sylvester's criterion: leading principal minors positive).
+fn positive_definite_3(c: &[f64; 6]) -> bool {
+    let [xx, xy, xz, yy, yz, zz] = *c;
+    let m2 = xx * yy - xy * xy;
+    let det = xx * (yy * zz - yz * yz) - xy * (xy * zz - yz * xz) + xz * (xy * yz - yy * xz);
+    xx > 0.0 && m2 > 0.0 && det > 0.0
+}
+
 fn csv_error(path: &Path, e: csv::Error) -> CliError {
     let line = e.position().map(csv::Position::line);
     let message = match e.kind() {
@@ -224,19 +291,31 @@ fn csv_error(path: &Path, e: csv::Error) -> CliError {
     CliError::input(path, line, None, message)
 }
 
-/// Plot file text for simulated plots of 2-D polar or Cartesian sensors (the layout of
-/// the first plot; others are skipped with a count returned). Includes the `origin`
-/// column (`target:<id>` or `clutter`) — `argus track` ignores it.
+/// The layouts [`write_text`] can write, from the first plot's measurement.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Layout {
+    Polar,
+    Spherical,
+    Cartesian2,
+    Cartesian3,
+}
+
+/// Plot file text for simulated plots (the layout of the first plot: polar, spherical,
+/// Cartesian 2-D or 3-D; plots of another layout are skipped and counted). Includes the
+/// `origin` column (`target:<id>` or `clutter`) — `argus track` ignores it.
 pub(crate) fn write_text(plots: &[Plot]) -> (String, usize) {
-    let polar = matches!(
-        plots.first().map(|p| p.measurement),
-        Some(Measurement::Polar { .. }) | None
-    );
+    let layout = match plots.first().map(|p| p.measurement) {
+        Some(Measurement::Spherical { .. }) => Layout::Spherical,
+        Some(Measurement::Cartesian2d { .. }) => Layout::Cartesian2,
+        Some(Measurement::Cartesian3d { .. }) => Layout::Cartesian3,
+        _ => Layout::Polar,
+    };
     let amp = plots.iter().any(|p| p.amplitude.is_some());
-    let mut s = String::from(if polar {
-        "t,sensor,range,azimuth"
-    } else {
-        "t,sensor,x,y,r_xx,r_xy,r_yy"
+    let mut s = String::from(match layout {
+        Layout::Polar => "t,sensor,range,azimuth",
+        Layout::Spherical => "t,sensor,range,azimuth,elevation",
+        Layout::Cartesian2 => "t,sensor,x,y,r_xx,r_xy,r_yy",
+        Layout::Cartesian3 => "t,sensor,x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz",
     });
     if amp {
         s.push_str(",amplitude");
@@ -244,12 +323,28 @@ pub(crate) fn write_text(plots: &[Plot]) -> (String, usize) {
     s.push_str(",origin\n");
     let mut skipped = 0;
     for p in plots {
-        let body = match (polar, p.measurement) {
-            (true, Measurement::Polar { range, azimuth }) => format!("{range},{azimuth}"),
-            (false, Measurement::Cartesian2d { position, cov }) => format!(
+        let body = match (layout, p.measurement) {
+            (Layout::Polar, Measurement::Polar { range, azimuth }) => format!("{range},{azimuth}"),
+            (
+                Layout::Spherical,
+                Measurement::Spherical {
+                    range,
+                    azimuth,
+                    elevation,
+                },
+            ) => format!("{range},{azimuth},{elevation}"),
+            (Layout::Cartesian2, Measurement::Cartesian2d { position, cov }) => format!(
                 "{},{},{},{},{}",
                 position[0], position[1], cov[0], cov[1], cov[2]
             ),
+            (Layout::Cartesian3, Measurement::Cartesian3d { position, cov }) => {
+                let v: Vec<String> = position
+                    .iter()
+                    .chain(cov.iter())
+                    .map(|x| format!("{x}"))
+                    .collect();
+                v.join(",")
+            }
             _ => {
                 skipped += 1;
                 continue;

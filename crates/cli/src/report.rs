@@ -180,7 +180,7 @@ impl Report {
         out
     }
 
-    /// Writes `summary.json`, one CSV per series and one SVG per figure into `dir`, each
+    /// Writes `summary.json`, one CSV per series and one SVG and one PNG per figure into `dir`, each
     /// atomically. Returns the paths written.
     ///
     /// # Errors
@@ -199,6 +199,13 @@ impl Report {
                 message,
             })?;
             write_atomic(&path, svg.as_bytes())?;
+            files.push(path.display().to_string());
+            let path = dir.join(format!("{}.png", f.name));
+            let png = render::png(f).map_err(|message| CliError::Plot {
+                file: path.clone(),
+                message,
+            })?;
+            write_atomic(&path, &png)?;
             files.push(path.display().to_string());
         }
         let summary = Summary {

@@ -7,6 +7,7 @@ use std::ops::Range;
 use argus_sim::{SensorSpec, Truth};
 use indicatif::{ProgressBar, ProgressStyle};
 
+use crate::campaign::Splittable;
 use crate::error::CliError;
 use crate::report::Report;
 
@@ -158,4 +159,11 @@ pub(crate) trait Scenario: Sync {
     /// # Errors
     /// Whatever the simulation or the filters report.
     fn run(&self, ctx: &RunContext) -> Result<Report, CliError>;
+    /// The campaign as per-run records and a reduce step, when the scenario provides
+    /// one ([`crate::campaign::Campaign`]): `argus run` then also writes
+    /// `runs/<A>-<B>.jsonl`, and `argus merge` recomputes the report from split
+    /// campaigns. `None` (the default): the scenario runs whole only.
+    fn splittable(&self) -> Option<&dyn Splittable> {
+        None
+    }
 }

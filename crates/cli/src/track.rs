@@ -7,9 +7,12 @@ use serde::Deserialize;
 use toml::Spanned;
 
 use crate::error::CliError;
-use argus_filters::two_point_cv2;
+use argus_filters::{two_point_cv2, two_point_cv3};
 
-use crate::estimator::{CvEkf, CvKf, cv_ekf, cv_kf, polar, position, step, unbiased};
+use crate::estimator::{
+    cv_ekf, cv_kf, cv3_ekf, cv3_kf, polar, position, position3, spherical, step, unbiased,
+    unbiased3,
+};
 use crate::output::write_atomic;
 use crate::plotfile::{self, FilePlot, FileValue};
 
@@ -22,14 +25,16 @@ struct Config {
     estimator: EstimatorConfig,
 }
 
-/// A sensor: id and position; polar sensors also their noise.
+/// A sensor: id and position (`[x, y]` or `[x, y, z]`); polar sensors also their noise,
+/// spherical ones also the elevation noise.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SensorConfig {
     id: u32,
-    position: [f64; 2],
+    position: Spanned<Vec<f64>>,
     sigma_range: Option<Spanned<f64>>,
     sigma_azimuth_deg: Option<Spanned<f64>>,
+    sigma_elevation_deg: Option<Spanned<f64>>,
 }
 
 /// One motion model of an IMM: `kind = "cv"` or `"ct"` (with `rate_deg`).
@@ -128,17 +133,24 @@ fn check_markov(
     Ok(())
 }
 
-/// A validated estimator.
+/// A validated estimator: its kind and the CV model's white-acceleration σ (m/s²). The
+/// filter is built for the plot file's dimension (2-D or 3-D CV).
+#[derive(Debug, Clone, Copy)]
 enum Estimator {
-    KfConverted(CvKf),
-    Ekf(CvEkf),
+    KfConverted(f64),
+    Ekf(f64),
 }
 
 /// A validated sensor.
+#[derive(Debug, Clone, Copy)]
 struct Sensor {
     id: u32,
-    position: [f64; 2],
+    /// `[x, y, z]` (z = 0 when the config gives two coordinates).
+    position: [f64; 3],
+    /// Range σ (m), azimuth σ (rad).
     polar: Option<(f64, f64)>,
+    /// Elevation σ (rad).
+    sigma_elevation: Option<f64>,
 }
 
 fn load(path: &Path) -> Result<(Vec<Sensor>, Estimator), CliError> {
@@ -149,10 +161,28 @@ fn load(path: &Path) -> Result<(Vec<Sensor>, Estimator), CliError> {
     })?;
     let mut sensors = Vec::new();
     for s in &cfg.sensors {
-        if !s.position.iter().all(|v| v.is_finite()) {
+        let pos = s.position.get_ref();
+        let pos_line = Some(line_of(&text, s.position.span().start));
+        let position = match pos.as_slice() {
+            [x, y] => [*x, *y, 0.0],
+            [x, y, z] => [*x, *y, *z],
+            _ => {
+                return Err(CliError::input(
+                    path,
+                    pos_line,
+                    Some("position"),
+                    format!(
+                        "sensor {}: position needs 2 or 3 coordinates, not {}",
+                        s.id,
+                        pos.len()
+                    ),
+                ));
+            }
+        };
+        if !position.iter().all(|v| v.is_finite()) {
             return Err(CliError::input(
                 path,
-                None,
+                pos_line,
                 Some("position"),
                 format!("sensor {}: position must be finite", s.id),
             ));
@@ -172,10 +202,15 @@ fn load(path: &Path) -> Result<(Vec<Sensor>, Estimator), CliError> {
                 format!("sensor id {} given twice", s.id),
             ));
         }
+        let sigma_elevation = match &s.sigma_elevation_deg {
+            Some(e) => Some(non_negative(path, &text, "sigma_elevation_deg", e)?.to_radians()),
+            None => None,
+        };
         sensors.push(Sensor {
             id: s.id,
-            position: s.position,
+            position,
             polar,
+            sigma_elevation,
         });
     }
     let e = &cfg.estimator;
@@ -190,11 +225,11 @@ fn load(path: &Path) -> Result<(Vec<Sensor>, Estimator), CliError> {
     let est = match e.kind {
         EstimatorKind::KfConverted => {
             let sa = e.sigma_a.as_ref().ok_or_else(|| missing("sigma_a"))?;
-            Estimator::KfConverted(cv_kf(non_negative(path, &text, "sigma_a", sa)?)?)
+            Estimator::KfConverted(non_negative(path, &text, "sigma_a", sa)?)
         }
         EstimatorKind::Ekf => {
             let sa = e.sigma_a.as_ref().ok_or_else(|| missing("sigma_a"))?;
-            Estimator::Ekf(cv_ekf(non_negative(path, &text, "sigma_a", sa)?)?)
+            Estimator::Ekf(non_negative(path, &text, "sigma_a", sa)?)
         }
         EstimatorKind::Imm => {
             let models = e.models.as_ref().ok_or_else(|| missing("models"))?;
@@ -226,46 +261,129 @@ fn load(path: &Path) -> Result<(Vec<Sensor>, Estimator), CliError> {
     Ok((sensors, est))
 }
 
-/// Runs `argus track`.
+/// Runs `argus track`: 2-D plot files with a 2-D CV estimator, 3-D ones (spherical or
+/// Cartesian 3-D) with a 3-D CV estimator. Returns the number of track points written.
 ///
 /// # Errors
 /// [`CliError::Input`] for bad configuration or plots, filter errors, I/O.
 pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize, CliError> {
     let (sensors, est) = load(config)?;
     let plots = plotfile::read(plots_path)?;
-    // Per plot: its Cartesian position and covariance (converted) or the raw polar value.
-    let sensor_of = |p: &FilePlot| -> Result<&Sensor, CliError> {
-        sensors.iter().find(|s| s.id == p.sensor).ok_or_else(|| {
+    let ctx = Ctx {
+        config,
+        plots_path,
+        sensors: &sensors,
+    };
+    let (rows, n) = if plots.first().is_some_and(|p| p.value.dim() == 3) {
+        track_3d(&ctx, est, &plots)?
+    } else {
+        track_2d(&ctx, est, &plots)?
+    };
+    write_atomic(out, rows.as_bytes())?;
+    Ok(n)
+}
+
+/// What the per-dimension trackers need to name errors.
+struct Ctx<'a> {
+    config: &'a Path,
+    plots_path: &'a Path,
+    sensors: &'a [Sensor],
+}
+
+impl Ctx<'_> {
+    fn sensor(&self, p: &FilePlot) -> Result<&Sensor, CliError> {
+        self.sensors
+            .iter()
+            .find(|s| s.id == p.sensor)
+            .ok_or_else(|| {
+                CliError::input(
+                    self.plots_path,
+                    Some(p.line),
+                    Some("sensor"),
+                    format!(
+                        "unknown sensor {} (not in {})",
+                        p.sensor,
+                        self.config.display()
+                    ),
+                )
+            })
+    }
+
+    /// Range and azimuth σ of the plot's sensor.
+    fn polar_sigmas(&self, s: &Sensor) -> Result<(f64, f64), CliError> {
+        s.polar.ok_or_else(|| {
             CliError::input(
-                plots_path,
-                Some(p.line),
-                Some("sensor"),
-                format!("unknown sensor {} (not in {})", p.sensor, config.display()),
+                self.config,
+                None,
+                Some("sigma_range"),
+                format!(
+                    "sensor {} reports polar/spherical plots but has no sigma_range / sigma_azimuth_deg",
+                    s.id
+                ),
             )
         })
-    };
-    let convert = |p: &FilePlot| -> Result<(Vector<2>, Matrix<2, 2>), CliError> {
-        let s = sensor_of(p)?;
-        match p.value {
-            FileValue::Cartesian { x, y, cov } => Ok((
-                Vector::<2>::new(x, y),
-                Matrix::<2, 2>::new(cov[0], cov[1], cov[1], cov[2]),
-            )),
-            FileValue::Polar { range, azimuth } => {
-                let (sr, sa) = s.polar.ok_or_else(|| CliError::input(config, None, Some("sigma_range"),
-                    format!("sensor {} reports polar plots but has no sigma_range / sigma_azimuth_deg", s.id)))?;
-                let (z, r) = unbiased(range, azimuth, sr, sa).map_err(|e| {
-                    CliError::input(plots_path, Some(p.line), Some("range"), e.to_string())
-                })?;
-                Ok((z + Vector::<2>::new(s.position[0], s.position[1]), r))
-            }
+    }
+
+    /// Range, azimuth and elevation σ of the plot's sensor.
+    fn spherical_sigmas(&self, s: &Sensor) -> Result<[f64; 3], CliError> {
+        let (sr, sa) = self.polar_sigmas(s)?;
+        let se = s.sigma_elevation.ok_or_else(|| {
+            CliError::input(
+                self.config,
+                None,
+                Some("sigma_elevation_deg"),
+                format!(
+                    "sensor {} reports spherical plots but has no sigma_elevation_deg",
+                    s.id
+                ),
+            )
+        })?;
+        Ok([sr, sa, se])
+    }
+
+    fn filter_error(&self, p: &FilePlot) -> impl Fn(argus_filters::FilterError) -> CliError {
+        let (path, line) = (self.plots_path.to_path_buf(), p.line);
+        move |e| {
+            CliError::input(
+                &path,
+                Some(line),
+                None,
+                format!("filter update failed: {e}"),
+            )
         }
-    };
-    let mut rows = String::from("t,track,x,vx,y,vy,var_x,var_vx,var_y,var_vy\n");
+    }
+}
+
+/// The generic loop: two-point start on the first two plots, then one predict + update
+/// per plot, one CSV row per estimate (`t,track,` state, covariance diagonal).
+fn track_loop<const N: usize, const D: usize>(
+    ctx: &Ctx<'_>,
+    plots: &[FilePlot],
+    convert: impl Fn(&FilePlot) -> Result<(Vector<D>, Matrix<D, D>), CliError>,
+    init: impl Fn(
+        &Vector<D>,
+        &Matrix<D, D>,
+        &Vector<D>,
+        &Matrix<D, D>,
+        f64,
+    ) -> Result<Gaussian<N>, argus_filters::FilterError>,
+    update: impl Fn(&Gaussian<N>, f64, &FilePlot) -> Result<Gaussian<N>, CliError>,
+) -> Result<(String, usize), CliError> {
+    const AXES: [&str; 3] = ["x", "y", "z"];
+    let mut cols = vec!["t".to_owned(), "track".to_owned()];
+    let names: Vec<String> = AXES
+        .iter()
+        .take(N / 2)
+        .flat_map(|a| [(*a).to_owned(), format!("v{a}")])
+        .collect();
+    cols.extend(names.iter().cloned());
+    cols.extend(names.iter().map(|n| format!("var_{n}")));
+    let mut rows = cols.join(",");
+    rows.push('\n');
     let mut iter = plots.iter();
     let (Some(p1), Some(p2)) = (iter.next(), iter.next()) else {
         return Err(CliError::input(
-            plots_path,
+            ctx.plots_path,
             None,
             None,
             "at least two plots are needed to start a track",
@@ -273,76 +391,150 @@ pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize,
     };
     let (z1, r1) = convert(p1)?;
     let (z2, r2) = convert(p2)?;
-    let mut x = two_point_cv2(&z1, &r1, &z2, &r2, p2.time - p1.time).map_err(|e| {
+    let mut x = init(&z1, &r1, &z2, &r2, p2.time - p1.time).map_err(|e| {
         CliError::input(
-            plots_path,
+            ctx.plots_path,
             Some(p2.line),
             Some("t"),
             format!("two-point initialisation: {e}"),
         )
     })?;
     let mut t = p2.time;
-    let mut push = |t: f64, g: &Gaussian<4>| {
-        let m = g.mean();
-        let c = g.cov();
-        rows.push_str(&format!(
-            "{t},1,{},{},{},{},{},{},{},{}\n",
-            m[0],
-            m[1],
-            m[2],
-            m[3],
-            c[(0, 0)],
-            c[(1, 1)],
-            c[(2, 2)],
-            c[(3, 3)]
-        ));
+    let push = |rows: &mut String, t: f64, g: &Gaussian<N>| {
+        let mut v = vec![format!("{t}"), "1".to_owned()];
+        v.extend(g.mean().iter().map(|m| format!("{m}")));
+        v.extend((0..N).map(|i| format!("{}", g.cov()[(i, i)])));
+        rows.push_str(&v.join(","));
+        rows.push('\n');
     };
-    push(t, &x);
+    push(&mut rows, t, &x);
     let mut n = 1;
     for p in iter {
-        let dt = p.time - t;
-        let at = |e: argus_filters::FilterError| {
-            CliError::input(
-                plots_path,
-                Some(p.line),
-                None,
-                format!("filter update failed: {e}"),
-            )
-        };
-        x = match (&est, p.value) {
-            (Estimator::Ekf(f), FileValue::Polar { range, azimuth }) => {
-                let s = sensor_of(p)?;
-                let (sr, sa) = s.polar.ok_or_else(|| {
-                    CliError::input(
-                        config,
-                        None,
-                        Some("sigma_range"),
-                        format!("sensor {} has no polar noise", s.id),
-                    )
-                })?;
-                step(
-                    f,
-                    &x,
-                    dt,
-                    &polar(s.position, sr, sa)?,
-                    &Vector::<2>::new(range, azimuth),
-                )
-                .map_err(at)?
-                .0
-            }
-            (Estimator::Ekf(f), FileValue::Cartesian { .. }) => {
-                let (z, r) = convert(p)?;
-                step(f, &x, dt, &position(r)?, &z).map_err(at)?.0
-            }
-            (Estimator::KfConverted(f), _) => {
-                let (z, r) = convert(p)?;
-                step(f, &x, dt, &position(r)?, &z).map_err(at)?.0
-            }
-        };
+        x = update(&x, p.time - t, p)?;
         t = p.time;
-        push(t, &x);
+        push(&mut rows, t, &x);
         n += 1;
     }
-    write_atomic(out, rows.as_bytes())?;
-    Ok(n)
+    Ok((rows, n))
+}
+
+fn wrong_dim(ctx: &Ctx<'_>, p: &FilePlot) -> CliError {
+    CliError::input(
+        ctx.plots_path,
+        Some(p.line),
+        None,
+        "plot of another dimension than the file's first plot",
+    )
+}
+
+/// 2-D plots (polar or Cartesian) with a CV model on `[x, vx, y, vy]`.
+fn track_2d(
+    ctx: &Ctx<'_>,
+    est: Estimator,
+    plots: &[FilePlot],
+) -> Result<(String, usize), CliError> {
+    let convert = |p: &FilePlot| -> Result<(Vector<2>, Matrix<2, 2>), CliError> {
+        let s = ctx.sensor(p)?;
+        match p.value {
+            FileValue::Cartesian { x, y, cov } => Ok((
+                Vector::<2>::new(x, y),
+                Matrix::<2, 2>::new(cov[0], cov[1], cov[1], cov[2]),
+            )),
+            FileValue::Polar { range, azimuth } => {
+                let (sr, sa) = ctx.polar_sigmas(s)?;
+                let (z, r) = unbiased(range, azimuth, sr, sa).map_err(|e| {
+                    CliError::input(ctx.plots_path, Some(p.line), Some("range"), e.to_string())
+                })?;
+                Ok((z + Vector::<2>::new(s.position[0], s.position[1]), r))
+            }
+            FileValue::Spherical { .. } | FileValue::Cartesian3 { .. } => Err(wrong_dim(ctx, p)),
+        }
+    };
+    match est {
+        Estimator::KfConverted(sa) => {
+            let f = cv_kf(sa)?;
+            track_loop(ctx, plots, convert, two_point_cv2, |x, dt, p| {
+                let (z, r) = convert(p)?;
+                Ok(step(&f, x, dt, &position(r)?, &z)
+                    .map_err(ctx.filter_error(p))?
+                    .0)
+            })
+        }
+        Estimator::Ekf(sa) => {
+            let f = cv_ekf(sa)?;
+            track_loop(ctx, plots, convert, two_point_cv2, |x, dt, p| {
+                let post = if let FileValue::Polar { range, azimuth } = p.value {
+                    let s = ctx.sensor(p)?;
+                    let (sr, sa) = ctx.polar_sigmas(s)?;
+                    let m = polar([s.position[0], s.position[1]], sr, sa)?;
+                    step(&f, x, dt, &m, &Vector::<2>::new(range, azimuth))
+                } else {
+                    let (z, r) = convert(p)?;
+                    step(&f, x, dt, &position(r)?, &z)
+                };
+                Ok(post.map_err(ctx.filter_error(p))?.0)
+            })
+        }
+    }
+}
+
+/// 3-D plots (spherical or Cartesian) with a CV model on `[x, vx, y, vy, z, vz]`.
+fn track_3d(
+    ctx: &Ctx<'_>,
+    est: Estimator,
+    plots: &[FilePlot],
+) -> Result<(String, usize), CliError> {
+    let convert = |p: &FilePlot| -> Result<(Vector<3>, Matrix<3, 3>), CliError> {
+        let s = ctx.sensor(p)?;
+        match p.value {
+            FileValue::Cartesian3 { p: q, cov } => Ok((
+                Vector::<3>::new(q[0], q[1], q[2]),
+                Matrix::<3, 3>::new(
+                    cov[0], cov[1], cov[2], cov[1], cov[3], cov[4], cov[2], cov[4], cov[5],
+                ),
+            )),
+            FileValue::Spherical {
+                range,
+                azimuth,
+                elevation,
+            } => {
+                let sig = ctx.spherical_sigmas(s)?;
+                let (z, r) = unbiased3(range, azimuth, elevation, sig).map_err(|e| {
+                    CliError::input(ctx.plots_path, Some(p.line), Some("range"), e.to_string())
+                })?;
+                Ok((z + Vector::<3>::from(s.position), r))
+            }
+            FileValue::Polar { .. } | FileValue::Cartesian { .. } => Err(wrong_dim(ctx, p)),
+        }
+    };
+    match est {
+        Estimator::KfConverted(sa) => {
+            let f = cv3_kf(sa)?;
+            track_loop(ctx, plots, convert, two_point_cv3, |x, dt, p| {
+                let (z, r) = convert(p)?;
+                Ok(step(&f, x, dt, &position3(r)?, &z)
+                    .map_err(ctx.filter_error(p))?
+                    .0)
+            })
+        }
+        Estimator::Ekf(sa) => {
+            let f = cv3_ekf(sa)?;
+            track_loop(ctx, plots, convert, two_point_cv3, |x, dt, p| {
+                let post = if let FileValue::Spherical {
+                    range,
+                    azimuth,
+                    elevation,
+                } = p.value
+                {
+                    let s = ctx.sensor(p)?;
+                    let m = spherical(s.position, ctx.spherical_sigmas(s)?)?;
+                    step(&f, x, dt, &m, &Vector::<3>::new(range, azimuth, elevation))
+                } else {
+                    let (z, r) = convert(p)?;
+                    step(&f, x, dt, &position3(r)?, &z)
+                };
+                Ok(post.map_err(ctx.filter_error(p))?.0)
+            })
+        }
+    }
 }

@@ -338,3 +338,244 @@ fn simulate_then_track_round_trip() {
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// Runs `argus` in `dir` and asserts success; returns stdout.
+fn ok(args: &[&str], dir: &Path) -> String {
+    let o = argus(args, dir);
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn read(dir: &Path, f: &str) -> String {
+    std::fs::read_to_string(dir.join(f)).unwrap()
+}
+
+#[test]
+fn merge_of_split_campaign_equals_whole_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    ok(&["run", "cv-polar", "--runs", "0..40", "--out", "a"], d);
+    ok(&["run", "cv-polar", "--runs", "40..100", "--out", "b"], d);
+    ok(&["run", "cv-polar", "--runs", "100", "--out", "whole"], d);
+    let out = ok(&["merge", "cv-polar", "a", "b", "--out", "m"], d);
+    assert!(out.contains("--runs 0..100 (2 files)"), "{out}");
+    // Exactly the same numbers: per-step CSV, per-run file and every summary result.
+    assert_eq!(read(d, "whole/per_step.csv"), read(d, "m/per_step.csv"));
+    assert_eq!(
+        read(d, "whole/runs/0-100.jsonl"),
+        read(d, "m/runs/0-100.jsonl")
+    );
+    let j = |f: &str| serde_json::from_str::<serde_json::Value>(&read(d, f)).unwrap();
+    let (w, m) = (j("whole/summary.json"), j("m/summary.json"));
+    for k in ["results", "runs", "seed", "params", "scenario"] {
+        assert_eq!(w[k], m[k], "{k}");
+    }
+    // The pieces differ from the whole (a real merge, not a copy).
+    assert_ne!(read(d, "a/per_step.csv"), read(d, "m/per_step.csv"));
+    // A merged directory merges again with a later piece.
+    ok(&["run", "cv-polar", "--runs", "100..120", "--out", "c"], d);
+    ok(&["merge", "cv-polar", "m", "c", "--out", "m2"], d);
+    ok(&["run", "cv-polar", "--runs", "120", "--out", "whole2"], d);
+    assert_eq!(read(d, "whole2/per_step.csv"), read(d, "m2/per_step.csv"));
+}
+
+#[test]
+fn merge_rejects_overlap_gap_and_mismatch() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let runs = |r: &str, out: &str, seed: &str| {
+        ok(
+            &[
+                "run",
+                "cv-polar",
+                "--runs",
+                r,
+                "--out",
+                out,
+                "--seed",
+                seed,
+                "--set",
+                "duration=20",
+            ],
+            d,
+        );
+    };
+    runs("0..4", "a", "1");
+    runs("2..6", "b", "1");
+    runs("5..8", "c", "1");
+    runs("4..8", "s2", "2");
+    let err = |args: &[&str]| {
+        let o = argus(args, d);
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+        )
+    };
+    let (code, e) = err(&["merge", "cv-polar", "a", "b", "--out", "m"]);
+    assert_error(code, &e, &["2-6.jsonl:2", "field 'run'", "run 2 also in"]);
+    let (code, e) = err(&["merge", "cv-polar", "a", "c", "--out", "m"]);
+    assert_error(code, &e, &["gaps", "missing run 4"]);
+    let (code, e) = err(&["merge", "cv-polar", "a", "s2", "--out", "m"]);
+    assert_error(code, &e, &["4-8.jsonl:1", "field 'seed'"]);
+    let (code, e) = err(&["merge", "cv-polar", "a", "--out", "a"]);
+    assert_error(code, &e, &["one of the merged directories"]);
+    // A truncated per-run file is named with its line count.
+    let f = d.join("b/runs/2-6.jsonl");
+    let text = std::fs::read_to_string(&f).unwrap();
+    let cut: Vec<&str> = text.lines().take(3).collect();
+    std::fs::write(&f, cut.join("\n")).unwrap();
+    let (code, e) = err(&["merge", "cv-polar", "b", "--out", "m"]);
+    assert_error(code, &e, &["2-6.jsonl", "2 run lines for runs 2..6"]);
+    // No merged output was left behind by the failures.
+    assert!(!d.join("m").exists());
+}
+
+#[test]
+fn figures_are_written_as_svg_and_png() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    ok(
+        &[
+            "run",
+            "cv-polar",
+            "--runs",
+            "4",
+            "--out",
+            "r",
+            "--set",
+            "duration=20",
+        ],
+        d,
+    );
+    for stem in ["rmse_pos", "anees"] {
+        let png = std::fs::read(d.join(format!("r/{stem}.png"))).unwrap();
+        // PNG signature, then IHDR with width 800 and height 500 (big-endian).
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+        assert_eq!(&png[16..24], &[0, 0, 3, 32, 0, 0, 1, 244]);
+        let svg = read(d, &format!("r/{stem}.svg"));
+        assert!(svg.contains("time (s)"), "x label missing in {stem}.svg");
+    }
+    assert!(read(d, "r/rmse_pos.svg").contains("position error (m)"));
+}
+
+/// A 3-D CV target: x₀ = (20 km, 5 km, 3 km), v = (−100, 50, 10) m/s, plots every 2 s.
+fn truth3(t: f64) -> [f64; 3] {
+    [20_000.0 - 100.0 * t, 5_000.0 + 50.0 * t, 3_000.0 + 10.0 * t]
+}
+
+const CONFIG3: &str = r#"
+[[sensor]]
+id = 1
+position = [100.0, 200.0, 10.0]
+sigma_range = 1.0
+sigma_azimuth_deg = 0.001
+sigma_elevation_deg = 0.001
+
+[[sensor]]
+id = 2
+position = [0.0, 0.0]
+
+[estimator]
+kind = "kf-converted"
+sigma_a = 0.0
+"#;
+
+fn rows(text: &str) -> Vec<Vec<f64>> {
+    text.lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect()
+}
+
+#[test]
+fn track_3d_cartesian_reports_match_least_squares() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut plots = String::from("t,sensor,x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz\n");
+    for k in 0..6 {
+        let t = 2.0 * f64::from(k);
+        let [x, y, z] = truth3(t);
+        plots.push_str(&format!("{t},2,{x},{y},{z},100,10,0,100,0,100\n"));
+    }
+    let (code, err) = track(dir.path(), CONFIG3, &plots);
+    assert_eq!(code, Some(0), "{err}");
+    let text = read(dir.path(), "tracks.csv");
+    assert_eq!(
+        text.lines().next(),
+        Some("t,track,x,vx,y,vy,z,vz,var_x,var_vx,var_y,var_vy,var_z,var_vz")
+    );
+    let r = rows(&text);
+    assert_eq!(r.len(), 5);
+    let last = &r[4];
+    // Exact plots of a CV target and no process noise: the KF stays on the truth.
+    let [x, y, z] = truth3(10.0);
+    for (got, want) in [
+        (last[2], x),
+        (last[3], -100.0),
+        (last[4], y),
+        (last[5], 50.0),
+        (last[6], z),
+        (last[7], 10.0),
+    ] {
+        assert!((got - want).abs() < 1e-6, "{last:?}");
+    }
+    // Without process noise the KF is least squares on t = 0, 2, …, 10 (n = 6, t̄ = 5,
+    // Sxx = 70): var(x(10)) = R (1/n + (10 − t̄)²/Sxx) = 100 · 0.52381, var(v) = R/Sxx.
+    for axis in 0..3 {
+        assert!((last[8 + 2 * axis] - 100.0 * (1.0 / 6.0 + 25.0 / 70.0)).abs() < 1e-9);
+        assert!((last[9 + 2 * axis] - 100.0 / 70.0).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn track_3d_spherical_plots_kf_and_ekf() {
+    let dir = tempfile::tempdir().unwrap();
+    // Noise-free spherical plots of the 3-D target from sensor 1 at (100, 200, 10).
+    let mut plots = String::from("t,sensor,range,azimuth,elevation\n");
+    for k in 0..6 {
+        let t = 2.0 * f64::from(k);
+        let [x, y, z] = truth3(t);
+        let (dx, dy, dz) = (x - 100.0, y - 200.0, z - 10.0);
+        let r = (dx * dx + dy * dy + dz * dz).sqrt();
+        plots.push_str(&format!(
+            "{t},1,{r},{},{}\n",
+            dy.atan2(dx),
+            dz.atan2(dx.hypot(dy))
+        ));
+    }
+    for kind in ["kf-converted", "ekf"] {
+        let cfg = CONFIG3.replace("kf-converted", kind);
+        let (code, err) = track(dir.path(), &cfg, &plots);
+        assert_eq!(code, Some(0), "{kind}: {err}");
+        let r = rows(&read(dir.path(), "tracks.csv"));
+        let last = &r[4];
+        // Exact plots: the only error is the unbiased conversion's 1/λ range scaling in
+        // the start, λ⁻¹ − 1 ≈ σψ²/2 + σθ²/2 ≈ 3e-10 of 20 km ≈ 6 µm; allow 1 mm.
+        let [x, y, z] = truth3(10.0);
+        assert!((last[2] - x).abs() < 1e-3, "{kind} {last:?}");
+        assert!((last[4] - y).abs() < 1e-3, "{kind} {last:?}");
+        assert!((last[6] - z).abs() < 1e-3, "{kind} {last:?}");
+        assert!((last[3] + 100.0).abs() < 1e-3, "{kind} {last:?}");
+    }
+    // Bad 3-D input: a sensor without elevation σ, an elevation beyond π/2, a
+    // covariance that is not positive definite.
+    let no_el = CONFIG3.replace("sigma_elevation_deg = 0.001\n", "");
+    let (code, err) = track(dir.path(), &no_el, &plots);
+    assert_error(
+        code,
+        &err,
+        &["filter.toml", "field 'sigma_elevation_deg'", "sensor 1"],
+    );
+    let bad_el = "t,sensor,range,azimuth,elevation\n0,1,1000,0.1,0.2\n2,1,1000,0.1,1.7\n";
+    let (code, err) = track(dir.path(), CONFIG3, bad_el);
+    assert_error(code, &err, &["plots.csv:3", "field 'elevation'"]);
+    let bad_cov = "t,sensor,x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz\n0,2,1,2,3,1,2,0,1,0,1\n";
+    let (code, err) = track(dir.path(), CONFIG3, bad_cov);
+    assert_error(code, &err, &["plots.csv:2", "not positive definite"]);
+    let missing = "t,sensor,x,y,z,r_xx,r_xy,r_yy\n0,2,1,2,3,1,0,1\n";
+    let (code, err) = track(dir.path(), CONFIG3, missing);
+    assert_error(code, &err, &["plots.csv:1", "field 'r_xz'", "missing"]);
+}

@@ -13,13 +13,15 @@
 use argus_core_math::Vector;
 use argus_sim::{
     KinematicState, Measurement, Metrics, RunRecord, Schedule, Segment, SensorId, SensorKind,
-    SensorSpec, StepRecord, Trajectory, Truth, generate_plots, monte_carlo,
+    SensorSpec, StepRecord, Trajectory, Truth, generate_plots,
 };
+use serde::{Deserialize, Serialize};
 
 use crate::error::CliError;
 use argus_filters::two_point_cv2;
 
-use crate::estimator::{cv_kf, position, step, unbiased};
+use crate::campaign::{Campaign, Splittable, in_process};
+use crate::estimator::{CvKf, cv_kf, position, step, unbiased};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
 use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
 
@@ -137,65 +139,136 @@ impl Scenario for CvPolar {
         Ok((truth, vec![radar]))
     }
 
-    #[allow(clippy::too_many_lines)]
     fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
-        let p = &ctx.params;
+        let records = Splittable::records(self, ctx)?;
+        self.reduce_records(&ctx.params, &in_process(records, &ctx.runs))
+    }
+
+    fn splittable(&self) -> Option<&dyn Splittable> {
+        Some(self)
+    }
+}
+
+/// What a `cv-polar` campaign shares between runs.
+pub(crate) struct Setup {
+    traj: Trajectory,
+    sensors: Vec<SensorSpec>,
+    truth: Truth,
+    kf: CvKf,
+    sigma_r: f64,
+    sigma_th: f64,
+}
+
+/// One step of a run: `(t, ‖p̂ − p‖², ‖v̂ − v‖², NEES, NIS, tr P_pos)`.
+type StepRow = (f64, f64, f64, Option<f64>, Option<f64>, f64);
+
+/// One run's record (one JSON line of `runs/<A>-<B>.jsonl`).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub(crate) struct CvRun {
+    /// NEES above [`LOST_NEES`] at some step.
+    lost: bool,
+    /// The steps, from the two-point start.
+    steps: Vec<StepRow>,
+}
+
+impl Campaign for CvPolar {
+    type Setup = Setup;
+    type Run = CvRun;
+
+    fn setup(&self, p: &Params) -> Result<Setup, CliError> {
         let (truth, sensors) = self.scene(p)?;
-        let sigma_r = p.get("sigma_r")?;
-        let sigma_th = p.get("sigma_az_deg")?.to_radians();
-        let kf = cv_kf(p.get("sigma_a")?)?;
         let traj = truth
             .targets()
             .first()
             .map(|(_, t)| t.clone())
             .ok_or(CliError::Usage("cv-polar: no target".into()))?;
+        Ok(Setup {
+            traj,
+            sensors,
+            truth,
+            kf: cv_kf(p.get("sigma_a")?)?,
+            sigma_r: p.get("sigma_r")?,
+            sigma_th: p.get("sigma_az_deg")?.to_radians(),
+        })
+    }
 
-        // One run: (record, filter's own position variance per step).
-        let one_run =
-            |_: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<(RunRecord, Vec<f64>), CliError> {
-                let plots = generate_plots(&truth, &sensors, rng)?;
-                let mut conv = Vec::with_capacity(plots.len());
-                for pl in &plots {
-                    if let Measurement::Polar { range, azimuth } = pl.measurement {
-                        let (z, r) = unbiased(range, azimuth, sigma_r, sigma_th)?;
-                        conv.push((pl.time, z, r));
-                    }
-                }
-                let mut conv = conv.into_iter();
-                let (Some((t1, z1, r1)), Some((t2, z2, r2))) = (conv.next(), conv.next()) else {
-                    return Err(CliError::Usage(
-                        "cv-polar: fewer than two plots; increase duration".into(),
-                    ));
-                };
-                let mut est = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1)?;
-                let mut t = t2;
-                let mut steps = Vec::new();
-                let mut var = Vec::new();
-                let mut lost = false;
-                let mut record = |t: f64,
-                                  est: &argus_core_math::Gaussian<4>,
-                                  nis: Option<f64>|
-                 -> Result<(), CliError> {
-                    let x = traj.state_at(t)?.state_2d();
-                    let s = StepRecord::from_estimate_2d(t, est, &x, nis);
-                    lost |= s.nees.is_none_or(|n| n > LOST_NEES);
-                    steps.push(s);
-                    var.push(est.cov()[(0, 0)] + est.cov()[(2, 2)]);
-                    Ok(())
-                };
-                record(t, &est, None)?;
-                for (tk, z, r) in conv {
-                    let (post, innov) = step(&kf, &est, tk - t, &position(r)?, &z)?;
-                    est = post;
-                    t = tk;
-                    record(t, &est, Some(innov.nis))?;
-                }
-                Ok((RunRecord { steps, lost }, var))
-            };
-        let progress = &ctx.progress;
-        let results = monte_carlo(ctx.seed, ctx.runs.clone(), one_run, || progress.tick())?;
-        progress.finish();
+    fn one_run(
+        &self,
+        s: &Setup,
+        _run: u64,
+        rng: &mut argus_sim::ChaCha8Rng,
+    ) -> Result<CvRun, CliError> {
+        let plots = generate_plots(&s.truth, &s.sensors, rng)?;
+        let mut conv = Vec::with_capacity(plots.len());
+        for pl in &plots {
+            if let Measurement::Polar { range, azimuth } = pl.measurement {
+                let (z, r) = unbiased(range, azimuth, s.sigma_r, s.sigma_th)?;
+                conv.push((pl.time, z, r));
+            }
+        }
+        let mut conv = conv.into_iter();
+        let (Some((t1, z1, r1)), Some((t2, z2, r2))) = (conv.next(), conv.next()) else {
+            return Err(CliError::Usage(
+                "cv-polar: fewer than two plots; increase duration".into(),
+            ));
+        };
+        let mut est = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1)?;
+        let mut t = t2;
+        let mut steps = Vec::new();
+        let mut lost = false;
+        let mut record = |t: f64,
+                          est: &argus_core_math::Gaussian<4>,
+                          nis: Option<f64>|
+         -> Result<(), CliError> {
+            let x = s.traj.state_at(t)?.state_2d();
+            let r = StepRecord::from_estimate_2d(t, est, &x, nis);
+            lost |= r.nees.is_none_or(|n| n > LOST_NEES);
+            steps.push((
+                r.time,
+                r.pos_err_sq,
+                r.vel_err_sq,
+                r.nees,
+                r.nis,
+                est.cov()[(0, 0)] + est.cov()[(2, 2)],
+            ));
+            Ok(())
+        };
+        record(t, &est, None)?;
+        for (tk, z, r) in conv {
+            let (post, innov) = step(&s.kf, &est, tk - t, &position(r)?, &z)?;
+            est = post;
+            t = tk;
+            record(t, &est, Some(innov.nis))?;
+        }
+        Ok(CvRun { lost, steps })
+    }
 
+    #[allow(clippy::too_many_lines)]
+    fn reduce(&self, _setup: &Setup, runs: &[CvRun]) -> Result<Report, CliError> {
+        let results: Vec<(RunRecord, Vec<f64>)> = runs
+            .iter()
+            .map(|r| {
+                let steps = r
+                    .steps
+                    .iter()
+                    .map(|&(time, pos_err_sq, vel_err_sq, nees, nis, _)| StepRecord {
+                        time,
+                        pos_err_sq,
+                        vel_err_sq,
+                        nees,
+                        nis,
+                    })
+                    .collect();
+                let var = r.steps.iter().map(|st| st.5).collect();
+                (
+                    RunRecord {
+                        steps,
+                        lost: r.lost,
+                    },
+                    var,
+                )
+            })
+            .collect();
         let records: Vec<RunRecord> = results.iter().map(|(r, _)| r.clone()).collect();
         let m = Metrics::from_runs(&records, 4, 2, WARMUP)?;
         // The filter's own RMS position error prediction: sqrt(mean over kept runs of tr P_pos).
