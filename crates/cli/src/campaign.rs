@@ -393,3 +393,53 @@ pub(crate) fn in_process(records: Vec<String>, runs: &Range<u64>) -> Vec<RecordT
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn per_run_file_round_trips_every_f64_exactly() {
+        // Values whose shortest decimal form needs care when parsed back: serde_json
+        // without `float_roundtrip` may miss them by one ulp.
+        let tricky: Vec<f64> = vec![
+            0.1 + 0.2,
+            1.0 / 3.0,
+            2.225_073_858_507_201e-308,
+            5e-324,
+            f64::MAX,
+            -1.797_693_134_862_315_7e308,
+            9_007_199_254_740_993.0,
+            20.946_123_456_789_012,
+        ];
+        let records: Vec<String> = tricky
+            .iter()
+            .map(|v| serde_json::to_string(&vec![*v]).unwrap())
+            .collect();
+        let runs = 3..3 + tricky.len() as u64;
+        let params = Params::from_settings(&[], &[]).unwrap();
+        let text = runs_text("t", 7, &runs, &params, &records).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("runs")).unwrap();
+        std::fs::write(runs_file(dir.path(), &runs), text).unwrap();
+        let m = read_dirs("t", &[], &[dir.path().to_path_buf()]).unwrap();
+        assert_eq!(m.seed, 7);
+        assert_eq!(m.runs, runs);
+        for (rec, want) in m.records.iter().zip(&tricky) {
+            let got: Vec<f64> = serde_json::from_str(&rec.json).unwrap();
+            assert_eq!(got[0].to_bits(), want.to_bits(), "{want:e}");
+        }
+        // Another scenario's name is refused, naming the header field.
+        let e = read_dirs("other", &[], &[dir.path().to_path_buf()]).unwrap_err();
+        assert!(
+            matches!(&e, CliError::Input { at, .. } if at.line == Some(1) && at.field.as_deref() == Some("scenario")),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn record_count_must_match_range() {
+        let params = Params::from_settings(&[], &[]).unwrap();
+        assert!(runs_text("t", 1, &(0..3), &params, &["1".into(), "2".into()]).is_err());
+    }
+}

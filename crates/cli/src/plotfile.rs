@@ -361,3 +361,78 @@ pub(crate) fn write_text(plots: &[Plot]) -> (String, usize) {
     }
     (s, skipped)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Vec<FilePlot>, CliError> {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("p.csv");
+        std::fs::write(&p, text).unwrap();
+        read(&p)
+    }
+
+    fn at(e: &CliError) -> (Option<u64>, Option<String>) {
+        match e {
+            CliError::Input { at, .. } => (at.line, at.field.clone()),
+            other => panic!("not an input error: {other}"),
+        }
+    }
+
+    #[test]
+    fn sylvester_criterion_on_hand_matrices() {
+        // diag(1, 2, 3): minors 1, 2, 6 > 0.
+        assert!(positive_definite_3(&[1.0, 0.0, 0.0, 2.0, 0.0, 3.0]));
+        // [[2, 1, 0], [1, 2, 1], [0, 1, 2]]: minors 2, 3, det = 4 > 0.
+        assert!(positive_definite_3(&[2.0, 1.0, 0.0, 2.0, 1.0, 2.0]));
+        // [[1, 1, 1], [1, 1, 1], [1, 1, 1]] is singular (rank 1).
+        assert!(!positive_definite_3(&[1.0, 1.0, 1.0, 1.0, 1.0, 1.0]));
+        // [[1, 0, 2], [0, 1, 0], [2, 0, 1]]: det = 1 − 4 = −3 < 0 though the 2×2 minor is 1.
+        assert!(!positive_definite_3(&[1.0, 0.0, 2.0, 1.0, 0.0, 1.0]));
+    }
+
+    #[test]
+    fn layouts_are_recognised() {
+        let p = parse("t,sensor,range,azimuth,elevation\n0,1,1000,0.1,0.2\n").unwrap();
+        assert_eq!(
+            p[0].value,
+            FileValue::Spherical {
+                range: 1000.0,
+                azimuth: 0.1,
+                elevation: 0.2
+            }
+        );
+        assert_eq!(p[0].value.dim(), 3);
+        // Columns in any order; the covariance keeps its upper-triangle order.
+        // [[1, .2, .3], [.2, 4, 1], [.3, 1, 6]]: minors 1, 3.96, det 22.52 > 0.
+        let p =
+            parse("r_zz,r_yz,r_yy,r_xz,r_xy,r_xx,z,y,x,sensor,t\n6,1,4,0.3,0.2,1,3,2,1,4,0.5\n")
+                .unwrap();
+        assert_eq!(
+            p[0].value,
+            FileValue::Cartesian3 {
+                p: [1.0, 2.0, 3.0],
+                cov: [1.0, 0.2, 0.3, 4.0, 1.0, 6.0]
+            }
+        );
+        // cov [[1, .2, .3], [.2, 4, 5], [.3, 5, 6]] has det < 0: rejected on line 2.
+        let e = parse("t,sensor,x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz\n0,1,1,2,3,1,0.2,0.3,4,5,6\n")
+            .unwrap_err();
+        assert_eq!(at(&e), (Some(2), Some("r_xx".into())));
+        assert_eq!(p[0].sensor, 4);
+        assert_eq!(p[0].line, 2);
+    }
+
+    #[test]
+    fn bad_headers_and_values_name_line_and_field() {
+        let e = parse("t,sensor,range,x\n").unwrap_err();
+        assert_eq!(at(&e).0, Some(1));
+        let e = parse("t,sensor,range,azimuth,elevation\n0,1,0,0.1,0.2\n").unwrap_err();
+        assert_eq!(at(&e), (Some(2), Some("range".into())));
+        let e = parse("t,sensor,range,azimuth\n0,1,5,0.1\n0,-1,5,0.1\n").unwrap_err();
+        assert_eq!(at(&e), (Some(3), Some("sensor".into())));
+        let e = parse("t,sensor,x,y,z,r_xx\n").unwrap_err();
+        assert_eq!(at(&e), (Some(1), Some("r_xy".into())));
+    }
+}

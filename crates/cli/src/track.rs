@@ -538,3 +538,78 @@ fn track_3d(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn load_text(text: &str) -> Result<(Vec<Sensor>, Estimator), CliError> {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("f.toml");
+        std::fs::write(&p, text).unwrap();
+        load(&p)
+    }
+
+    fn at(e: &CliError) -> (Option<u64>, Option<String>) {
+        match e {
+            CliError::Input { at, .. } => (at.line, at.field.clone()),
+            other => panic!("not an input error: {other}"),
+        }
+    }
+
+    const GOOD: &str = "[[sensor]]\nid = 3\nposition = [1.0, 2.0, 3.0]\nsigma_range = 10.0\nsigma_azimuth_deg = 0.5\nsigma_elevation_deg = 0.25\n\n[estimator]\nkind = \"ekf\"\nsigma_a = 2.0\n";
+
+    #[test]
+    fn good_config_is_typed() {
+        let (s, e) = load_text(GOOD).unwrap();
+        assert_eq!(s.len(), 1);
+        assert_eq!(s[0].id, 3);
+        // Parsed exactly: compare bits.
+        assert_eq!(
+            s[0].position.map(f64::to_bits),
+            [1.0f64, 2.0, 3.0].map(f64::to_bits)
+        );
+        let (sr, sa) = s[0].polar.unwrap();
+        assert!((sr - 10.0).abs() < 1e-15);
+        // 0.5° and 0.25° in radians: π/360 and π/720.
+        assert!((sa - std::f64::consts::PI / 360.0).abs() < 1e-15);
+        assert!((s[0].sigma_elevation.unwrap() - std::f64::consts::PI / 720.0).abs() < 1e-15);
+        assert!(matches!(e, Estimator::Ekf(v) if (v - 2.0).abs() < 1e-15));
+        // A 2-D position gets z = 0.
+        let (s, _) = load_text(&GOOD.replace("[1.0, 2.0, 3.0]", "[1.0, 2.0]")).unwrap();
+        assert_eq!(
+            s[0].position.map(f64::to_bits),
+            [1.0f64, 2.0, 0.0].map(f64::to_bits)
+        );
+    }
+
+    #[test]
+    fn bad_values_name_their_line() {
+        let e = load_text(&GOOD.replace("[1.0, 2.0, 3.0]", "[1.0, 2.0, 3.0, 4.0]")).unwrap_err();
+        assert_eq!(at(&e), (Some(3), Some("position".into())));
+        let e = load_text(&GOOD.replace("0.25", "-0.25")).unwrap_err();
+        assert_eq!(at(&e), (Some(6), Some("sigma_elevation_deg".into())));
+        let e = load_text(&GOOD.replace("sigma_a = 2.0", "sigma_a = -2.0")).unwrap_err();
+        assert_eq!(at(&e), (Some(10), Some("sigma_a".into())));
+        let e = load_text(&GOOD.replace("\"ekf\"", "\"ukf\"")).unwrap_err();
+        assert_eq!(at(&e).0, Some(9));
+        let twice = format!("{}\n{}", &GOOD[..GOOD.find("[estimator]").unwrap()], GOOD);
+        let e = load_text(&twice).unwrap_err();
+        assert_eq!(at(&e).1.as_deref(), Some("id"));
+    }
+
+    #[test]
+    fn markov_rows_must_be_stochastic() {
+        let imm = |m: &str| {
+            format!(
+                "[estimator]\nkind = \"imm\"\nmodels = [{{ kind = \"cv\", sigma_a = 0.1 }}, {{ kind = \"ct\", sigma_a = 0.5, rate_deg = 3.0 }}]\nmarkov = {m}\n"
+            )
+        };
+        let e = load_text(&imm("[[0.9, 0.1], [0.1, 0.8]]")).unwrap_err();
+        assert_eq!(at(&e), (Some(4), Some("markov".into())));
+        let e = load_text(&imm("[[1.1, -0.1], [0.1, 0.9]]")).unwrap_err();
+        assert_eq!(at(&e), (Some(4), Some("markov".into())));
+        let e = load_text(&imm("[[1.0]]")).unwrap_err();
+        assert_eq!(at(&e), (Some(4), Some("markov".into())));
+    }
+}
