@@ -579,3 +579,55 @@ fn track_3d_spherical_plots_kf_and_ekf() {
     let (code, err) = track(dir.path(), CONFIG3, missing);
     assert_error(code, &err, &["plots.csv:1", "field 'r_xz'", "missing"]);
 }
+
+#[test]
+fn track_3d_noisy_spherical_plots_are_consistent() {
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, StandardNormal};
+    // 30 seeded runs of 20 noisy spherical plots (σr = 20 m, σψ = σθ = 0.2°, r ≈ 20 km:
+    // r σ² / σr ≈ 0.012, the near-linear regime) of the CV target, no process noise
+    // in truth or filter. At the last plot each axis' normalised squared position error
+    // e²/var is χ²₁ for a consistent filter; the mean of 90 of them lies in
+    // χ²₉₀(0.025, 0.975)/90 (axes treated as independent, which they nearly are here).
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = CONFIG3
+        .replace("sigma_range = 1.0", "sigma_range = 20.0")
+        .replace("sigma_azimuth_deg = 0.001", "sigma_azimuth_deg = 0.2")
+        .replace("sigma_elevation_deg = 0.001", "sigma_elevation_deg = 0.2");
+    let (sr, sa) = (20.0, 0.2f64.to_radians());
+    let lo = argus_core_math::chi2_quantile(0.025, 90.0).unwrap() / 90.0;
+    let hi = argus_core_math::chi2_quantile(0.975, 90.0).unwrap() / 90.0;
+    for kind in ["kf-converted", "ekf"] {
+        let cfg = cfg.replace("kf-converted", kind);
+        let mut sum = 0.0;
+        for run in 0..30u64 {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1000 + run);
+            let mut n = || -> f64 { StandardNormal.sample(&mut rng) };
+            let mut plots = String::from("t,sensor,range,azimuth,elevation\n");
+            for k in 0..20 {
+                let t = 2.0 * f64::from(k);
+                let [x, y, z] = truth3(t);
+                let (dx, dy, dz) = (x - 100.0, y - 200.0, z - 10.0);
+                let r = (dx * dx + dy * dy + dz * dz).sqrt() + sr * n();
+                let az = dy.atan2(dx) + sa * n();
+                let el = dz.atan2(dx.hypot(dy)) + sa * n();
+                plots.push_str(&format!("{t},1,{r},{az},{el}\n"));
+            }
+            let (code, err) = track(dir.path(), &cfg, &plots);
+            assert_eq!(code, Some(0), "{kind}: {err}");
+            let r = rows(&read(dir.path(), "tracks.csv"));
+            let last = r.last().unwrap();
+            let truth = truth3(38.0);
+            for axis in 0..3 {
+                let e = last[2 + 2 * axis] - truth[axis];
+                sum += e * e / last[8 + 2 * axis];
+            }
+        }
+        let mean = sum / 90.0;
+        println!("{kind}: mean e²/var {mean:.4} in [{lo:.4}, {hi:.4}]");
+        assert!(
+            (lo..=hi).contains(&mean),
+            "{kind}: {mean} not in [{lo}, {hi}]"
+        );
+    }
+}
