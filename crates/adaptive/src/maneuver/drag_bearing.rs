@@ -400,6 +400,21 @@ fn simulate_truth(
     })
 }
 
+/// The noise-free true states at the plot times `k dt`, `k = 0..=steps` (the first is
+/// the initial state): the reference trajectory of Figs. 5–7.
+///
+/// # Errors
+/// [`ManeuverError`] for an invalid configuration.
+pub fn reference_trajectory(cfg: &DragBearingConfig) -> Result<Vec<Vector<4>>, ManeuverError> {
+    cfg.validate()?;
+    let quiet = DragBearingConfig { q: 0.0, ..*cfg };
+    let sim = simulate_truth(&quiet, &mut ChaCha8Rng::seed_from_u64(0))?;
+    let mut out = Vec::with_capacity(sim.truth.len() + 1);
+    out.push(cfg.initial_truth());
+    out.extend(sim.truth);
+    Ok(out)
+}
+
 /// One Monte Carlo run with seed `seed` (`ChaCha8Rng::seed_from_u64(seed)`): truth,
 /// plots, and the four filters of [`DragFilter::ALL`] from the same prior.
 ///
