@@ -4,7 +4,9 @@
 mod bias_32;
 mod clutter;
 mod cv_polar;
+mod drag_bearing;
 mod gimpo;
+mod maneuver_1d;
 mod rbs_landing;
 
 use crate::scenario::Scenario;
@@ -17,6 +19,8 @@ pub(crate) fn all() -> Vec<Box<dyn Scenario>> {
         Box::new(rbs_landing::RbsLanding),
         Box::new(bias_32::Bias32),
         Box::new(clutter::Clutter),
+        Box::new(maneuver_1d::Maneuver1d),
+        Box::new(drag_bearing::DragBearing),
         // One line per scenario, e.g. `Box::new(gimpo::Gimpo),`
     ]
 }
