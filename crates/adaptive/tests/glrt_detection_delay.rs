@@ -141,3 +141,49 @@ fn detection_delay_is_limited_by_the_signal_to_noise_of_the_first_half_second() 
     // Measured 0.64 (200 runs); the bound above with λ(0.5 s) gives ≈ 0.7.
     assert!((0.5..0.8).contains(&within), "{within}");
 }
+
+#[test]
+fn bad_maneuver_1d_inputs_are_rejected_with_the_field_named() {
+    use argus_adaptive::ManeuverError;
+    let d = Maneuver1dConfig::default();
+    let cases = [
+        ("dt", Maneuver1dConfig { dt: -0.05, ..d }),
+        ("r", Maneuver1dConfig { r: 0.0, ..d }),
+        ("q", Maneuver1dConfig { q: f64::NAN, ..d }),
+        (
+            "accel",
+            Maneuver1dConfig {
+                accel: f64::INFINITY,
+                ..d
+            },
+        ),
+        ("steps", Maneuver1dConfig { steps: 0, ..d }),
+    ];
+    let run = simulate(&d, CASE1, 0).unwrap();
+    for (field, cfg) in cases {
+        match run_filters(&cfg, &run, 20.0, Compensation::Glrt) {
+            Err(ManeuverError::InvalidParameter { what, .. }) => assert_eq!(what, field),
+            other => panic!("{field}: {other:?}"),
+        }
+    }
+    assert!(matches!(
+        run_filters(&d, &run, f64::NAN, Compensation::Glrt),
+        Err(ManeuverError::InvalidParameter { .. })
+    ));
+    let window = Maneuver1dConfig { min_age: 30, ..d };
+    assert!(matches!(
+        run_filters(&window, &run, 20.0, Compensation::Glrt),
+        Err(ManeuverError::InvalidWindow { .. })
+    ));
+    // Windows: inverted, overlapping, non-finite.
+    for w in [
+        &[(3.0, 2.0)][..],
+        &[(2.0, 4.0), (3.0, 5.0)][..],
+        &[(f64::NAN, 2.0)][..],
+    ] {
+        assert!(matches!(
+            simulate(&d, w, 0),
+            Err(ManeuverError::InvalidParameter { .. })
+        ));
+    }
+}
