@@ -11,6 +11,12 @@ pub enum AssociationError {
     /// The underlying filter failed (non-PD `S`, non-finite plot, bad `dt`).
     #[error(transparent)]
     Filter(#[from] FilterError),
+    /// The IMM failed (mixing, prediction, mode probabilities).
+    #[error(transparent)]
+    Imm(#[from] argus_imm::ImmError),
+    /// No IMM mode can explain the scan (every mode's likelihood is zero).
+    #[error("no IMM mode can explain the scan (all mode likelihoods are zero)")]
+    NoLikelihood,
     /// A numerical check failed.
     #[error(transparent)]
     Math(#[from] MathError),

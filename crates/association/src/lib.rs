@@ -33,6 +33,7 @@ mod amplitude;
 mod associator;
 mod error;
 mod gate;
+mod imm;
 mod neighbour;
 mod pda;
 mod prediction;
@@ -43,6 +44,7 @@ pub use amplitude::AmplitudeModel;
 pub use associator::{Associator, Candidate, Outcome, track_step};
 pub use error::AssociationError;
 pub use gate::Gate;
+pub use imm::imm_associate;
 pub use neighbour::{NearestNeighbour, StrongestNeighbour};
 pub use pda::{ClutterModel, Pda};
 pub use prediction::{

@@ -373,3 +373,36 @@ fn bad_input_is_rejected_with_a_named_error() {
     assert!(PerformancePredictor::new(sys, gate3, 0.9, 1e-4, PredictedFilter::Pda).is_err());
     assert!(PerformancePredictor::new(sys, gate, 0.0, 1e-4, PredictedFilter::Pda).is_err());
 }
+
+#[test]
+fn imm_pda_with_identical_modes_is_the_pda() {
+    // An IMM with two identical modes and the PDA as association: both modes give the
+    // plain PDA posterior and the mode probabilities stay at the Markov prediction (the
+    // likelihoods are equal), to round-off (1e-12).
+    use argus_association::imm_associate;
+    use argus_imm::{Imm, ImmEstimate, MarkovMatrix};
+    let kf = Kf::new(Cv2D::discrete(2.0).unwrap());
+    let radar = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 100.0).unwrap();
+    let gate = Gate::from_probability(0.999, 2).unwrap();
+    let pda = Pda::new(gate, 0.9, ClutterModel::Poisson { density: 1e-4 }).unwrap();
+    let imm = Imm::new(
+        [kf, kf],
+        MarkovMatrix::new([[0.9, 0.1], [0.2, 0.8]]).unwrap(),
+    )
+    .unwrap();
+    let est = ImmEstimate::from_common(prior(), [0.3, 0.7]).unwrap();
+    let pred = imm.predict(&est, 1.0).unwrap();
+    let z = *pred.modes()[0].mean();
+    let plots = [
+        Candidate::new(Vector::<2>::new(z[0] + 8.0, z[2] - 4.0)),
+        Candidate::new(Vector::<2>::new(z[0] - 20.0, z[2] + 15.0)),
+    ];
+    let (upd, ll) = imm_associate(imm.filters(), &pda, &radar, &pred, &plots).unwrap();
+    let single = track_step(&kf, &pda, &radar, &prior(), 1.0, &plots).unwrap();
+    assert!(close(&upd.modes()[0], &single.posterior, 1e-12));
+    assert!((ll[0] - single.log_likelihood).abs() < 1e-12);
+    let mu_pred = pred.log_predicted_probabilities().map(f64::exp);
+    for (a, b) in upd.mode_probabilities().iter().zip(mu_pred) {
+        assert!((a - b).abs() < 1e-12);
+    }
+}
