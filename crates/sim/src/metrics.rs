@@ -2,12 +2,12 @@
 //! chi-square intervals, time averages after a warm-up share, and track losses.
 
 use argus_core_math::{Gaussian, Vector, anees_interval};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::error::{SimError, probability};
 
 /// One time step of one run: squared errors and consistency statistics.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct StepRecord {
     /// Time (s).
     pub time: f64,
@@ -62,7 +62,7 @@ impl StepRecord {
 
 /// One run's record: its steps (the same time grid in every run) and whether the track
 /// was lost (by the scenario's own criterion).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RunRecord {
     /// The steps, in time order.
     pub steps: Vec<StepRecord>,
