@@ -3,6 +3,7 @@
 
 mod bias_32;
 mod clutter;
+mod launch;
 mod cv_polar;
 mod drag_bearing;
 mod gimpo;
@@ -19,6 +20,7 @@ pub(crate) fn all() -> Vec<Box<dyn Scenario>> {
         Box::new(rbs_landing::RbsLanding),
         Box::new(bias_32::Bias32),
         Box::new(clutter::Clutter),
+        Box::new(launch::Launch),
         Box::new(maneuver_1d::Maneuver1d),
         Box::new(drag_bearing::DragBearing),
         // One line per scenario, e.g. `Box::new(gimpo::Gimpo),`
