@@ -334,3 +334,62 @@ impl Scenario for Launch {
         Ok(report)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario::Progress;
+
+    #[test]
+    fn ekf_tracks_the_launch_vehicle() {
+        // 20 runs, seed 3, default parameters.
+        let params = Params::from_settings(&Launch.params(), &[]).unwrap();
+        let ctx = RunContext {
+            runs: 0..20,
+            seed: 3,
+            params,
+            progress: Progress::new(0, false),
+        };
+        let report = Launch.run(&ctx).unwrap();
+        let series = report
+            .series
+            .iter()
+            .find(|s| s.name == "launch_time")
+            .unwrap();
+        let at = |t: f64| {
+            series
+                .rows
+                .iter()
+                .find(|r| (r[0] - t).abs() < 1e-9)
+                .unwrap()
+                .clone()
+        };
+        let upper = at(0.0)[5];
+        // Smooth boost (20–110 s): not over-confident — mean ANEES below the per-step
+        // 95 % upper bound for 6 dof × 20 runs.
+        let boost: Vec<f64> = series
+            .rows
+            .iter()
+            .filter(|r| r[0] >= 20.0 && r[0] <= 110.0)
+            .map(|r| r[3])
+            .collect();
+        let mean = boost.iter().sum::<f64>() / boost.len() as f64;
+        assert!(mean < upper, "boost ANEES {mean} vs upper {upper}");
+        // Burnout (120 s): the acceleration jumps by ≈ 37 m/s², which the CA model
+        // cannot follow at once — the ANEES must leave the interval just after.
+        assert!(at(122.0)[3] > upper, "burnout ANEES {}", at(122.0)[3]);
+        // At the end the filter beats a single plot: σ_plot = √(σ_r² + 2 (r σ_θ)²).
+        let end = truth_states(&[END], (-30f64).to_radians())[0];
+        let r = (end[0] * end[0] + end[1] * end[1] + end[2] * end[2]).sqrt();
+        let single = (25.0 + 2.0 * (r * 2e-4).powi(2)).sqrt();
+        let last = at(END)[1];
+        assert!(
+            last < single,
+            "final RMSE {last} m vs single plot {single} m (range {r} m)"
+        );
+        eprintln!(
+            "boost ANEES {mean:.2}, upper {upper:.2}, burnout {:.1}, final RMSE {last:.1} vs {single:.1} at {r:.0} m",
+            at(122.0)[3]
+        );
+    }
+}
