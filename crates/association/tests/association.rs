@@ -406,3 +406,26 @@ fn imm_pda_with_identical_modes_is_the_pda() {
         assert!((a - b).abs() < 1e-12);
     }
 }
+
+#[test]
+fn non_parametric_pda_uses_m_over_v() {
+    // The non-parametric PDA is the parametric one with λ = m/V (m gated plots, V the
+    // gate volume c₂ γ |S|^{1/2}); equal to round-off (1e-12).
+    let kf = Kf::new(Cv2D::discrete(2.0).unwrap());
+    let radar = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 100.0).unwrap();
+    let gate = Gate::from_probability(0.99, 2).unwrap();
+    let pred = kf.predict(&prior(), 1.0).unwrap();
+    let mp = kf.predict_measurement(&pred, &radar).unwrap();
+    let plots = [
+        Candidate::new(mp.z_pred() + Vector::<2>::new(10.0, 3.0)),
+        Candidate::new(mp.z_pred() + Vector::<2>::new(-25.0, 12.0)),
+        Candidate::new(mp.z_pred() + Vector::<2>::new(5.0, -30.0)),
+    ];
+    let np = Pda::new(gate, 0.8, ClutterModel::NonParametric).unwrap();
+    let out = np.associate(&pred, &mp, &radar, &plots).unwrap();
+    let lambda = out.gated as f64 / gate.volume(&mp);
+    let par = Pda::new(gate, 0.8, ClutterModel::Poisson { density: lambda }).unwrap();
+    let expect = par.associate(&pred, &mp, &radar, &plots).unwrap();
+    assert_eq!(out.gated, 3);
+    assert!(close(&out.posterior, &expect.posterior, 1e-12));
+}
