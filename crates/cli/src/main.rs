@@ -164,18 +164,21 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             } else {
                 (sc.run(&ctx)?, None)
             };
+            let mut extra = Vec::new();
+            if let Some(text) = runs_file {
+                let path = campaign::runs_file(&out, &runs);
+                output::write_atomic(&path, text.as_bytes())?;
+                extra.push(path.display().to_string());
+            }
             let info = RunInfo {
                 scenario: sc.name(),
                 seed,
                 runs: runs.clone(),
                 params: ctx.params.as_map(),
+                extra_files: &extra,
             };
             let mut files = report.write(&out, &info)?;
-            if let Some(text) = runs_file {
-                let path = campaign::runs_file(&out, &runs);
-                output::write_atomic(&path, text.as_bytes())?;
-                files.push(path.display().to_string());
-            }
+            files.extend(extra.iter().cloned());
             println!(
                 "argus run {} --seed {seed} --runs {}..{}",
                 sc.name(),
@@ -211,18 +214,20 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             }
             let m = campaign::read_dirs(sc.name(), &sc.params(), &dirs)?;
             let report = sp.reduce_records(&m.params, &m.records)?;
+            let records: Vec<String> = m.records.iter().map(|r| r.json.clone()).collect();
+            let text = campaign::runs_text(sc.name(), m.seed, &m.runs, &m.params, &records)?;
+            let path = campaign::runs_file(&out, &m.runs);
+            output::write_atomic(&path, text.as_bytes())?;
+            let extra = vec![path.display().to_string()];
             let info = RunInfo {
                 scenario: sc.name(),
                 seed: m.seed,
                 runs: m.runs.clone(),
                 params: m.params.as_map(),
+                extra_files: &extra,
             };
-            let records: Vec<String> = m.records.iter().map(|r| r.json.clone()).collect();
-            let text = campaign::runs_text(sc.name(), m.seed, &m.runs, &m.params, &records)?;
             let mut files = report.write(&out, &info)?;
-            let path = campaign::runs_file(&out, &m.runs);
-            output::write_atomic(&path, text.as_bytes())?;
-            files.push(path.display().to_string());
+            files.extend(extra.iter().cloned());
             println!(
                 "argus merge {} --seed {} --runs {}..{} ({} files)",
                 sc.name(),

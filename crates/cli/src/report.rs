@@ -113,6 +113,9 @@ pub(crate) struct RunInfo<'a> {
     pub(crate) runs: std::ops::Range<u64>,
     /// Parameters in effect.
     pub(crate) params: &'a BTreeMap<String, f64>,
+    /// Files already written beside the report (e.g. the per-run file), listed in the
+    /// summary's `files`.
+    pub(crate) extra_files: &'a [String],
 }
 
 fn fmt_num(v: f64) -> String {
@@ -215,7 +218,7 @@ impl Report {
             params: info.params,
             results: self.rows.iter().map(|r| (r.key.as_str(), r)).collect(),
             notes: &self.notes,
-            files: files.clone(),
+            files: files.iter().chain(info.extra_files).cloned().collect(),
         };
         let path = dir.join("summary.json");
         let json = serde_json::to_string_pretty(&summary)

@@ -374,6 +374,7 @@ fn merge_of_split_campaign_equals_whole_run() {
     for k in ["results", "runs", "seed", "params", "scenario"] {
         assert_eq!(w[k], m[k], "{k}");
     }
+    assert!(w["files"].to_string().contains("runs/0-100.jsonl"), "{w}");
     // The pieces differ from the whole (a real merge, not a copy).
     assert_ne!(read(d, "a/per_step.csv"), read(d, "m/per_step.csv"));
     // A merged directory merges again with a later piece.
