@@ -3,10 +3,10 @@
 
 mod bias_32;
 mod clutter;
-mod launch;
 mod cv_polar;
 mod drag_bearing;
 mod gimpo;
+mod launch;
 mod maneuver_1d;
 mod rbs_landing;
 
