@@ -189,7 +189,11 @@ pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
                 format!("'{raw_sensor}' is not a sensor id (a non-negative integer)"),
             )
         })?;
-        if idx("amplitude").is_some() {
+        // An empty amplitude field means the plot has none (a file may mix both).
+        if idx("amplitude")
+            .and_then(|i| rec.get(i))
+            .is_some_and(|raw| !raw.trim().is_empty())
+        {
             num("amplitude")?;
         }
         let value = if polar {
@@ -352,7 +356,11 @@ pub(crate) fn write_text(plots: &[Plot]) -> (String, usize) {
         };
         s.push_str(&format!("{},{},{body}", p.time, p.sensor.0));
         if amp {
-            s.push_str(&format!(",{}", p.amplitude.unwrap_or(f64::NAN)));
+            // No NaN as a "missing" marker: a plot without amplitude leaves the field empty.
+            match p.amplitude {
+                Some(a) => s.push_str(&format!(",{a}")),
+                None => s.push(','),
+            }
         }
         match p.origin {
             Origin::Target(id) => s.push_str(&format!(",target:{}\n", id.0)),
@@ -422,6 +430,30 @@ mod tests {
         assert_eq!(at(&e), (Some(2), Some("r_xx".into())));
         assert_eq!(p[0].sensor, 4);
         assert_eq!(p[0].line, 2);
+    }
+
+    #[test]
+    fn plots_without_amplitude_round_trip_beside_plots_with_one() {
+        // A target plot with an amplitude and one without: the writer leaves the field
+        // empty (never NaN) and the reader accepts the file.
+        let mk = |t: f64, amplitude| Plot {
+            time: t,
+            sensor: argus_sim::SensorId(1),
+            measurement: Measurement::Polar {
+                range: 1000.0 + t,
+                azimuth: 0.1,
+            },
+            amplitude,
+            origin: Origin::Clutter,
+        };
+        let (text, skipped) = write_text(&[mk(0.0, Some(2.5)), mk(1.0, None)]);
+        assert_eq!(skipped, 0);
+        assert!(!text.contains("NaN"), "{text}");
+        let p = parse(&text).unwrap();
+        assert_eq!(p.len(), 2);
+        // A non-numeric amplitude is still an error naming line and field.
+        let e = parse("t,sensor,range,azimuth,amplitude\n0,1,1000,0.1,x\n").unwrap_err();
+        assert_eq!(at(&e), (Some(2), Some("amplitude".into())));
     }
 
     #[test]
