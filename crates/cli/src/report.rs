@@ -29,6 +29,28 @@ pub(crate) struct Row {
     pub(crate) note: String,
 }
 
+impl Row {
+    /// A row whose paper reference, if any, is a claim in words (no published number).
+    pub(crate) fn with_text(
+        key: String,
+        quantity: String,
+        paper_text: Option<&str>,
+        ours: f64,
+        unit: &str,
+        note: &str,
+    ) -> Self {
+        Self {
+            key,
+            quantity,
+            paper: None,
+            paper_text: paper_text.map(str::to_owned),
+            ours,
+            unit: unit.into(),
+            note: note.into(),
+        }
+    }
+}
+
 /// A named table of numbers over time, written as `<name>.csv`.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Series {

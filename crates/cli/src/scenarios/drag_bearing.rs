@@ -66,25 +66,6 @@ fn spec(key: &'static str, default: f64, min: f64, max: f64, help: &'static str)
     }
 }
 
-fn row(
-    key: String,
-    quantity: String,
-    paper: Option<&str>,
-    ours: f64,
-    unit: &str,
-    note: &str,
-) -> Row {
-    Row {
-        key,
-        quantity,
-        paper: None,
-        paper_text: paper.map(str::to_owned),
-        ours,
-        unit: unit.into(),
-        note: note.into(),
-    }
-}
-
 /// Extracts one plotted quantity from a state.
 type Component = fn(&Vector<4>) -> f64;
 
@@ -224,7 +205,7 @@ impl Scenario for DragBearing {
         let mut rows = Vec::new();
         for f in DragFilter::ALL {
             let k = key(f);
-            rows.push(row(
+            rows.push(Row::with_text(
                 format!("{k}_rms_pos_before_turn"),
                 format!("{} RMS position error before the turn", f.name()),
                 None,
@@ -232,7 +213,7 @@ impl Scenario for DragBearing {
                 "m",
                 "time mean of the MC mean square, t <= turn; range unobservable (radial motion)",
             ));
-            rows.push(row(
+            rows.push(Row::with_text(
                 format!("{k}_rms_pos_after_turn"),
                 format!("{} RMS position error after the turn", f.name()),
                 None,
@@ -240,7 +221,7 @@ impl Scenario for DragBearing {
                 "m",
                 "t >= turn",
             ));
-            rows.push(row(
+            rows.push(Row::with_text(
                 format!("{k}_rms_pos_final"),
                 format!("{} RMS position error, final 10 s", f.name()),
                 if f.adaptive() {
@@ -252,7 +233,7 @@ impl Scenario for DragBearing {
                 "m",
                 "issue 8: smaller with input estimation than without",
             ));
-            rows.push(row(
+            rows.push(Row::with_text(
                 format!("{k}_rms_range_final"),
                 format!("{} RMS range error, final 10 s", f.name()),
                 if f.adaptive() { Some("Fig. 7") } else { None },
@@ -260,7 +241,7 @@ impl Scenario for DragBearing {
                 "m",
                 "",
             ));
-            rows.push(row(
+            rows.push(Row::with_text(
                 format!("{k}_failed_runs"),
                 format!("{} runs with a failed step", f.name()),
                 None,
@@ -269,7 +250,7 @@ impl Scenario for DragBearing {
                 "the filter then coasts on predictions",
             ));
             if f.adaptive() {
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{k}_delay_mean"),
                     format!("{} mean detection delay after the turn", f.name()),
                     None,
@@ -277,7 +258,7 @@ impl Scenario for DragBearing {
                     "s",
                     &format!("missed in {} runs", s.missed(f)),
                 ));
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{k}_false_detections"),
                     format!("{} detections before the turn", f.name()),
                     None,
@@ -285,7 +266,7 @@ impl Scenario for DragBearing {
                     "-",
                     "summed over runs",
                 ));
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{k}_input_error"),
                     format!("{} final thrust-change error |u_hat - du|", f.name()),
                     None,
@@ -298,7 +279,7 @@ impl Scenario for DragBearing {
                 ));
             }
         }
-        rows.push(row(
+        rows.push(Row::with_text(
             "tsof_vs_ekf_early".into(),
             "adaptive TSOF / EKF RMS position, first 10 s after the turn".into(),
             Some("TSOF better early, EKF better in steady state"),

@@ -75,25 +75,6 @@ fn one_run(c: &Maneuver1dConfig, etas: &[f64; 3], seed: u64) -> Result<RunOutcom
         .collect()
 }
 
-fn row(
-    key: String,
-    quantity: String,
-    paper: Option<&str>,
-    ours: f64,
-    unit: &str,
-    note: &str,
-) -> Row {
-    Row {
-        key,
-        quantity,
-        paper: None,
-        paper_text: paper.map(str::to_owned),
-        ours,
-        unit: unit.into(),
-        note: note.into(),
-    }
-}
-
 impl Scenario for Maneuver1d {
     fn name(&self) -> &'static str {
         "maneuver-1d"
@@ -241,7 +222,7 @@ impl Scenario for Maneuver1d {
             let Some(first) = stats.first() else { continue };
             if windows.is_empty() {
                 for ((eta, comp_name, _), s) in combos.iter().zip(&stats) {
-                    rows.push(row(
+                    rows.push(Row::with_text(
                         format!("free_{comp_name}_eta{eta}_detections_per_run"),
                         format!("no maneuver, {comp_name}, eta {eta}: detections per run"),
                         Some("unstable for a badly chosen eta"),
@@ -252,7 +233,7 @@ impl Scenario for Maneuver1d {
                 }
                 continue;
             }
-            rows.push(row(
+            rows.push(Row::with_text(
                 format!("{case}_kf_rms_inside"),
                 format!("{case} KF RMS position error inside the maneuver"),
                 None,
@@ -264,7 +245,7 @@ impl Scenario for Maneuver1d {
                     "plots with t in (on, off]"
                 },
             ));
-            rows.push(row(
+            rows.push(Row::with_text(
                 format!("{case}_kf_rms_outside"),
                 format!("{case} KF RMS position error outside"),
                 None,
@@ -275,7 +256,7 @@ impl Scenario for Maneuver1d {
             for ((eta, comp_name, _), s) in combos.iter().zip(&stats) {
                 let k = format!("{case}_{comp_name}_eta{eta}");
                 let q = format!("{case} {comp_name} eta {eta}");
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{k}_rms_inside"),
                     format!("{q}: RMS inside"),
                     Some("adaptive much better than KF (Figs. 3-4)"),
@@ -287,7 +268,7 @@ impl Scenario for Maneuver1d {
                         ""
                     },
                 ));
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{k}_rms_outside"),
                     format!("{q}: RMS outside"),
                     None,
@@ -297,7 +278,7 @@ impl Scenario for Maneuver1d {
                 ));
                 for (i, sw) in s.switches.iter().enumerate() {
                     let d = s.detected_delays(i);
-                    rows.push(row(
+                    rows.push(Row::with_text(
                         format!("{k}_delay_median_{i}"),
                         format!("{q}: median delay after switch at {sw} s"),
                         None,
@@ -311,7 +292,7 @@ impl Scenario for Maneuver1d {
                         ),
                     ));
                 }
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{k}_within_0_5s"),
                     format!("{q}: switches detected within 0.5 s"),
                     None,
@@ -319,7 +300,7 @@ impl Scenario for Maneuver1d {
                     "-",
                     "fraction over switches x runs; issue 8 asks for each",
                 ));
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{k}_false_alarms_before_onset"),
                     format!("{q}: detections before the first switch"),
                     None,

@@ -64,25 +64,6 @@ fn line(label: String, t: &[f64], y: impl Iterator<Item = f64>, style: LineStyle
     }
 }
 
-fn row(
-    key: String,
-    quantity: String,
-    paper: Option<&str>,
-    ours: f64,
-    unit: &str,
-    note: &str,
-) -> Row {
-    Row {
-        key,
-        quantity,
-        paper: None,
-        paper_text: paper.map(str::to_owned),
-        ours,
-        unit: unit.into(),
-        note: note.into(),
-    }
-}
-
 impl Scenario for RbsLanding {
     fn name(&self) -> &'static str {
         "rbs-landing"
@@ -230,7 +211,7 @@ impl Scenario for RbsLanding {
                     ),
                     _ => (None, "whole approach (not in the paper)".to_owned()),
                 };
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{case}_{k}_anees"),
                     format!("{case} {} ANEES", kind.name()),
                     paper,
@@ -238,7 +219,7 @@ impl Scenario for RbsLanding {
                     "-",
                     &note,
                 ));
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{case}_{k}_anees_last20"),
                     format!("{case} {} ANEES, final 20%", kind.name()),
                     None,
@@ -247,7 +228,7 @@ impl Scenario for RbsLanding {
                     "t in the final 20% of the approach",
                 ));
                 for (a, axis) in ["x", "y", "z"].iter().enumerate() {
-                    rows.push(row(
+                    rows.push(Row::with_text(
                         format!("{case}_{k}_rms_{axis}"),
                         format!("{case} {} RMS {axis}", kind.name()),
                         None,
@@ -255,7 +236,7 @@ impl Scenario for RbsLanding {
                         "m",
                         "sqrt of the time mean of the MC mean square, whole approach",
                     ));
-                    rows.push(row(
+                    rows.push(Row::with_text(
                         format!("{case}_{k}_rms_{axis}_last20"),
                         format!("{case} {} RMS {axis}, final 20%", kind.name()),
                         None,
@@ -266,7 +247,7 @@ impl Scenario for RbsLanding {
                 }
             }
             for (a, axis) in ["x", "y", "z"].iter().enumerate() {
-                rows.push(row(
+                rows.push(Row::with_text(
                     format!("{case}_adkf_sigma_ratio_{axis}"),
                     format!("{case} ADKF sigma-hat/sigma {axis}"),
                     Some("follows the truth (Figs. 10-12)"),
@@ -331,8 +312,8 @@ impl Scenario for RbsLanding {
         // CDKF post-fit sample check (eq 28 sign), normal case.
         if let Some(s) = summaries.first() {
             for (a, axis) in ["range", "xaz", "xel"].iter().enumerate() {
-                rows.push(row(format!("scn1_sample_ratio_plus_{axis}"), format!("SCN.1 mean of (eps eps' + HPH')/R, {axis}"), Some("eq (28) corrected sign: 1"), s.sample_ratio[0][a], "-", "CDKF, aligned axis; R includes the SNR fluctuation, the filter assumes the mean"));
-                rows.push(row(
+                rows.push(Row::with_text(format!("scn1_sample_ratio_plus_{axis}"), format!("SCN.1 mean of (eps eps' + HPH')/R, {axis}"), Some("eq (28) corrected sign: 1"), s.sample_ratio[0][a], "-", "CDKF, aligned axis; R includes the SNR fluctuation, the filter assumes the mean"));
+                rows.push(Row::with_text(
                     format!("scn1_sample_ratio_minus_{axis}"),
                     format!("SCN.1 mean of (eps eps' - HPH')/R, {axis}"),
                     Some("eq (28) as printed"),
