@@ -65,6 +65,21 @@ pub(crate) enum CliError {
     /// A numerical check failed.
     #[error("math: {0}")]
     Math(#[from] argus_core_math::MathError),
+    /// An IMM or multi-IMM rejected a value.
+    #[error("imm: {0}")]
+    Imm(#[from] argus_imm::ImmError),
+    /// Gating or data association rejected a value.
+    #[error("association: {0}")]
+    Association(#[from] argus_association::AssociationError),
+    /// Bias estimation rejected a value.
+    #[error("registration: {0}")]
+    Registration(#[from] argus_registration::RegistrationError),
+    /// The adaptive-R decoupled filter rejected a value.
+    #[error("adaptive filter: {0}")]
+    Adaptive(#[from] argus_adaptive::AdaptiveError),
+    /// The maneuver detector or input estimator rejected a value.
+    #[error("maneuver detection: {0}")]
+    Maneuver(#[from] argus_adaptive::ManeuverError),
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {

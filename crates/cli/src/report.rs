@@ -30,6 +30,46 @@ pub(crate) struct Row {
 }
 
 impl Row {
+    /// A row with our number only; add the paper's number, its claim in words and a note with
+    /// [`Row::paper`], [`Row::paper_text`] and [`Row::note`].
+    pub(crate) fn new(
+        key: impl Into<String>,
+        quantity: impl Into<String>,
+        ours: f64,
+        unit: &str,
+    ) -> Self {
+        Self {
+            key: key.into(),
+            quantity: quantity.into(),
+            paper: None,
+            paper_text: None,
+            ours,
+            unit: unit.into(),
+            note: String::new(),
+        }
+    }
+
+    /// The paper's published number (`None` keeps it absent).
+    #[must_use]
+    pub(crate) fn paper(mut self, value: impl Into<Option<f64>>) -> Self {
+        self.paper = value.into();
+        self
+    }
+
+    /// The paper's claim in words.
+    #[must_use]
+    pub(crate) fn paper_text(mut self, text: impl Into<String>) -> Self {
+        self.paper_text = Some(text.into());
+        self
+    }
+
+    /// A note (what the number is averaged over, the interval it should fall in …).
+    #[must_use]
+    pub(crate) fn note(mut self, note: impl Into<String>) -> Self {
+        self.note = note.into();
+        self
+    }
+
     /// A row whose paper reference, if any, is a claim in words (no published number).
     pub(crate) fn with_text(
         key: String,

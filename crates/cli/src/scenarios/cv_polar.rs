@@ -295,83 +295,54 @@ impl Campaign for CvPolar {
             .anis_interval
             .map_or((f64::NAN, f64::NAN), |i| (i.lower, i.upper));
         let runs_used = m.runs - m.lost;
-        let row = |key: &str,
-                   quantity: &str,
-                   paper: Option<f64>,
-                   paper_text: Option<String>,
-                   ours: f64,
-                   unit: &str,
-                   note: String| Row {
-            key: key.into(),
-            quantity: quantity.into(),
-            paper,
-            paper_text,
-            ours,
-            unit: unit.into(),
-            note,
-        };
         let rows = vec![
-            row(
-                "rmse_pos",
-                "RMS position error",
-                Some(avg_pred_sd),
-                Some("filter's own √tr P".into()),
-                m.avg_rmse_pos,
-                "m",
-                format!(
+            Row::new("rmse_pos", "RMS position error", m.avg_rmse_pos, "m")
+                .paper(avg_pred_sd)
+                .paper_text("filter's own √tr P")
+                .note(format!(
                     "steps after the first {:.0} % , {runs_used} runs",
                     WARMUP * 100.0
-                ),
-            ),
-            row(
-                "rmse_vel",
-                "RMS velocity error",
-                None,
-                None,
-                m.avg_rmse_vel,
-                "m/s",
-                "same window".into(),
-            ),
-            row(
+                )),
+            Row::new("rmse_vel", "RMS velocity error", m.avg_rmse_vel, "m/s").note("same window"),
+            Row::new(
                 "anees",
                 "ANEES (time average)",
-                Some(4.0),
-                Some("consistent: 4".into()),
                 m.avg_anees.unwrap_or(f64::NAN),
                 "-",
-                format!("95 % interval [{alo:.3}, {ahi:.3}] (steps as independent)"),
-            ),
-            row(
+            )
+            .paper(4.0)
+            .paper_text("consistent: 4")
+            .note(format!(
+                "95 % interval [{alo:.3}, {ahi:.3}] (steps as independent)"
+            )),
+            Row::new(
                 "anis",
                 "ANIS (time average)",
-                Some(2.0),
-                Some("consistent: 2".into()),
                 m.avg_anis.unwrap_or(f64::NAN),
                 "-",
-                format!("per-step 95 % interval [{:.3}, {:.3}]", nis_iv.0, nis_iv.1),
-            ),
-            row(
+            )
+            .paper(2.0)
+            .paper_text("consistent: 2")
+            .note(format!(
+                "per-step 95 % interval [{:.3}, {:.3}]",
+                nis_iv.0, nis_iv.1
+            )),
+            Row::new(
                 "anees_steps_outside",
                 "per-step ANEES outside 95 % interval",
-                Some(0.05),
-                Some("≈ 5 % of steps".into()),
                 m.steps
                     .iter()
                     .filter(|s| s.anees.is_some_and(|a| a < lo || a > hi))
                     .count() as f64
                     / m.steps.len().max(1) as f64,
                 "-",
-                format!("interval [{lo:.3}, {hi:.3}] for {runs_used} runs"),
-            ),
-            row(
-                "tracks_lost",
-                "tracks lost",
-                Some(0.0),
-                None,
-                m.lost as f64,
-                "runs",
-                format!("NEES > {LOST_NEES} at any step"),
-            ),
+            )
+            .paper(0.05)
+            .paper_text("≈ 5 % of steps")
+            .note(format!("interval [{lo:.3}, {hi:.3}] for {runs_used} runs")),
+            Row::new("tracks_lost", "tracks lost", m.lost as f64, "runs")
+                .paper(0.0)
+                .note(format!("NEES > {LOST_NEES} at any step")),
         ];
 
         let t: Vec<f64> = m.steps.iter().map(|s| s.time).collect();

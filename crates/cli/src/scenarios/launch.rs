@@ -230,14 +230,10 @@ impl Scenario for Launch {
         progress.finish();
         let m = Metrics::from_runs(&records, 6, 3, 0.1)?;
         let mut report = Report::default();
-        let row = |key: &str, q: &str, v: f64, unit: &str, note: String| Row {
-            key: key.into(),
-            quantity: q.into(),
-            paper: None,
-            paper_text: Some("no number in the paper".into()),
-            ours: v,
-            unit: unit.into(),
-            note,
+        let row = |key: &str, q: &str, v: f64, unit: &str, note: String| {
+            Row::new(key, q, v, unit)
+                .paper_text("no number in the paper")
+                .note(note)
         };
         report.rows.push(row(
             "rmse_pos",
