@@ -11,6 +11,9 @@
 //!   (base seed, run index), results in run order whatever the thread count.
 //! - [`Metrics`]: RMSE per step, ANEES/ANIS with 95 % intervals, warm-up-excluded
 //!   averages, track losses.
+//! - [`Ospa`] and [`Gospa`] (with its localisation / missed / false split) between truth
+//!   and estimated positions; [`TrackStatistics`] (track breaks, id swaps, time to
+//!   confirm, false-track rate) from per-scan [`TrackScan`] associations.
 //!
 //! This crate makes truth and plots; it runs no filter.
 //!
@@ -42,19 +45,23 @@
 mod error;
 mod metrics;
 mod montecarlo;
+mod ospa;
 mod plots;
 mod sensor;
+mod track_metrics;
 mod truth;
 
 pub use error::SimError;
 pub use metrics::{Interval, Metrics, RunRecord, StepMetrics, StepRecord};
 pub use montecarlo::{monte_carlo, run_rng};
+pub use ospa::{Gospa, GospaValue, Ospa, OspaValue};
 pub use plots::{
     Measurement, Origin, Plot, beam_crossings, generate_plots, true_measurement, wrap_angle,
 };
 pub use sensor::{
     Bias, Clutter, ClutterRegion, Detection, Schedule, SensorId, SensorKind, SensorSpec,
 };
+pub use track_metrics::{TrackScan, TrackStatistics};
 pub use truth::{KinematicState, Segment, TargetId, Trajectory, Truth};
 
 /// Re-export of the generator type every run uses.
