@@ -1,5 +1,97 @@
-//! Multi-target surveillance tracker — **not built yet**.
+//! Multi-target surveillance tracker: plots in, tracks out.
 //!
-//! This crate will hold track initiation, confirmation and deletion, global
-//! nearest-neighbour and JPDA association, and per-track estimators. It exports
-//! nothing yet.
+//! A [`Tracker`] consumes a time-ordered stream of 2-D Cartesian position [`Plot`]s
+//! (each with its covariance, e.g. a converted polar plot) from one or more sensors,
+//! scan by scan, and maintains many [`Track`]s, each with its own Kalman filter on a
+//! constant-velocity model (`[x, vx, y, vy]`, [`argus_filters::Kf`] on
+//! [`argus_motion_models::Cv2D`]).
+//!
+//! # One scan
+//! 1. Every live track is predicted to the scan time.
+//! 2. **Gating at scale.** The scan's plots are binned in a square grid (cell
+//!    [`TrackerConfig::grid_cell`]); each track looks only at the cells met by the
+//!    bounding box of its gate, `±√(γ (P_xx + R_max,xx))` per axis, then applies the
+//!    chi-square gate `νᵀ S⁻¹ ν ≤ γ` (`γ` from [`TrackerConfig::gate_probability`],
+//!    [`argus_association::Gate`]) with `S` from
+//!    [`argus_filters::MeasurementPrediction`]. The cost is tracks × plots near each
+//!    track, not tracks × all plots.
+//! 3. **GNN.** Gated pairs form a bipartite graph whose connected components
+//!    (clusters) are solved one by one by an optimal 2-D assignment minimising the sum
+//!    of normalised distances `νᵀ S⁻¹ ν`, a track staying unassigned at cost `γ`.
+//!    Confirmed tracks are served first, tentative ones take the plots left.
+//!    The solver is the [`lsap`] crate: SciPy's `linear_sum_assignment` algorithm
+//!    (Crouse's shortest augmenting path form of Jonker–Volgenant) on `f64` costs and
+//!    rectangular matrices. `pathfinding::kuhn_munkres`, the best-known Rust solver,
+//!    needs `Ord` (integer) weights and documents that it does not support floats;
+//!    `lapjv` needs square `ndarray` matrices. lsap rejects infinite costs, so pairs
+//!    outside the gate get a prohibitive finite cost and are filtered out afterwards.
+//! 4. **Track management.** Assigned tracks are updated, the others keep their
+//!    prediction. A tentative track is confirmed when it has
+//!    [`TrackerConfig::confirm_m`] hits in its first [`TrackerConfig::confirm_n`]
+//!    opportunities (its two initiating plots are the first two), and deleted as soon
+//!    as that can no longer happen. A confirmed track is deleted after
+//!    [`TrackerConfig::max_misses`] consecutive misses. Any track is deleted when its
+//!    worst position standard deviation exceeds [`TrackerConfig::max_position_sigma`]
+//!    or its filter step fails. Ids are never reused.
+//! 5. **Initiation.** Plots used by no track are paired with unused plots of earlier
+//!    scans (at most [`TrackerConfig::max_initiation_interval`] old) through the
+//!    velocity gate `‖z₂ − z₁‖ ≤ v_max Δt + k √tr(R₁ + R₂)` (GNN again, on the
+//!    normalised distance), and each pair starts a tentative track by two-point
+//!    differencing ([`argus_filters::two_point_cv2`]). Plots still unused wait as
+//!    first points.
+//!
+//! # Bad input
+//! Plots out of time order, from a sensor not in the configuration, with a non-finite
+//! time, position or covariance, or with a covariance that is not symmetric positive
+//! definite, and bad configurations give a [`TrackerError`] that names the plot (index,
+//! time, sensor) or the field. All plots are checked before any track is touched, so
+//! a rejected call leaves the tracker unchanged. A track whose filter step fails
+//! numerically is deleted alone.
+//!
+//! # API for the CLI
+//! Build a [`TrackerConfig`] (public fields, validated by [`Tracker::new`]), then feed
+//! plots with [`Tracker::process`] (a stream; consecutive plots of one time and sensor
+//! form a scan) or [`Tracker::process_scan`] (one scan, possibly empty). Each returns
+//! [`ScanReport`]s (ids initiated, confirmed, deleted). After each scan,
+//! [`Tracker::tracks`] gives every live track's id, [`TrackStatus`] and estimate, and
+//! [`Tracker::deleted`] / [`Tracker::take_deleted`] the deleted ones with their
+//! [`DeletionReason`]: enough for `argus track --config` to write every track's states
+//! with id and status, and for `argus run surveillance` to score confirmed tracks with
+//! `argus_sim::Ospa`, `Gospa` and `TrackStatistics`.
+//!
+//! # Not yet here
+//! Polar plots go in after conversion (`argus_sensors::convert_polar`) by the caller;
+//! the per-track estimator is the CV Kalman filter only (EKF, IMM by configuration
+//! later); JPDA and the track-score (SPRT) initiation are not built yet.
+//!
+//! # Example
+//! ```
+//! use argus_core_math::{Matrix, Vector};
+//! use argus_tracker::{Plot, SensorId, TrackStatus, Tracker, TrackerConfig};
+//!
+//! let mut tracker = Tracker::new(TrackerConfig::new(vec![SensorId(0)]))?;
+//! // One target at 200 m/s along x, seen every 5 s with σ = 30 m.
+//! let r = Matrix::<2, 2>::identity() * 900.0;
+//! for k in 0..6 {
+//!     let t = 5.0 * f64::from(k);
+//!     let plot = Plot { time: t, sensor: SensorId(0), position: Vector::<2>::new(200.0 * t, 0.0), covariance: r };
+//!     tracker.process(&[plot])?;
+//! }
+//! // Initiated at the 2nd plot, confirmed at the 3rd (3 of 4).
+//! assert_eq!(tracker.tracks().len(), 1);
+//! assert_eq!(tracker.tracks()[0].status(), TrackStatus::Confirmed);
+//! assert_eq!(tracker.tracks()[0].confirmed_at(), Some(10.0));
+//! # Ok::<(), argus_tracker::TrackerError>(())
+//! ```
+
+mod assign;
+mod config;
+mod error;
+mod grid;
+mod track;
+mod tracker;
+
+pub use config::TrackerConfig;
+pub use error::TrackerError;
+pub use track::{DeletionReason, SensorId, Track, TrackId, TrackStatus};
+pub use tracker::{Plot, ScanReport, Tracker};

@@ -1,0 +1,87 @@
+//! The error type of `argus-tracker`.
+
+use argus_association::AssociationError;
+use argus_filters::FilterError;
+use argus_motion_models::MotionError;
+use argus_sensors::SensorError;
+
+use crate::SensorId;
+
+/// What went wrong. Input errors name the plot (its index in the slice given, its
+/// time and sensor) or the configuration field; they are detected before any track
+/// is touched, so a rejected call leaves the tracker exactly as it was.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TrackerError {
+    /// A configuration value is outside its domain.
+    #[error("tracker config {field} = {value} is invalid: {reason}")]
+    InvalidConfig {
+        /// The field.
+        field: &'static str,
+        /// Its value.
+        value: f64,
+        /// Why it is rejected.
+        reason: &'static str,
+    },
+    /// A plot is earlier than the tracker's current time or than the plot before it.
+    #[error("plot {index} at t = {time} s is earlier than t = {previous} s already processed")]
+    TimeOrder {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// Its time (s).
+        time: f64,
+        /// The time it should not precede (s).
+        previous: f64,
+    },
+    /// A plot comes from a sensor the configuration does not list.
+    #[error("plot {index} at t = {time} s comes from unknown sensor {sensor:?}")]
+    UnknownSensor {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// Its time (s).
+        time: f64,
+        /// The sensor named.
+        sensor: SensorId,
+    },
+    /// A plot's time, position or covariance entry is NaN or infinite.
+    #[error("plot {index} from sensor {sensor:?} has a non-finite {what}")]
+    NonFinite {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// Its sensor.
+        sensor: SensorId,
+        /// Which field.
+        what: &'static str,
+    },
+    /// A plot's covariance is not symmetric positive definite.
+    #[error("plot {index} at t = {time} s from sensor {sensor:?}: bad covariance: {source}")]
+    PlotCovariance {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// Its time (s).
+        time: f64,
+        /// Its sensor.
+        sensor: SensorId,
+        /// What the check found.
+        source: SensorError,
+    },
+    /// The plots given to one scan do not share one time and one sensor.
+    #[error("plot {index} does not share the scan's time {time} s and sensor {sensor:?}")]
+    MixedScan {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// The scan's time (s).
+        time: f64,
+        /// The scan's sensor.
+        sensor: SensorId,
+    },
+    /// The motion model rejected its parameters.
+    #[error(transparent)]
+    Motion(#[from] MotionError),
+    /// The gate rejected its parameters.
+    #[error(transparent)]
+    Association(#[from] AssociationError),
+    /// A filter step failed where no single track could absorb it.
+    #[error(transparent)]
+    Filter(#[from] FilterError),
+}

@@ -1,0 +1,546 @@
+//! The tracker: scans in, tracks out.
+
+use argus_association::Gate;
+use argus_core_math::{Gaussian, Matrix, Vector};
+use argus_filters::{GaussianFilter, Kf, two_point_cv2};
+use argus_motion_models::Cv2D;
+use argus_sensors::CartesianPosition;
+
+use crate::assign::{Edge, gnn};
+use crate::grid::Grid;
+use crate::{DeletionReason, SensorId, Track, TrackId, TrackStatus, TrackerConfig, TrackerError};
+
+/// One Cartesian position plot `(x, y)` with its covariance (e.g. a converted polar
+/// plot), from one sensor at one time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Plot {
+    /// Time (s).
+    pub time: f64,
+    /// The sensor that made it.
+    pub sensor: SensorId,
+    /// Position `(x, y)` (m).
+    pub position: Vector<2>,
+    /// Its covariance (m²): finite, symmetric, positive definite.
+    pub covariance: Matrix<2, 2>,
+}
+
+/// What one scan did.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ScanReport {
+    /// The scan time (s).
+    pub time: f64,
+    /// Plots in the scan.
+    pub plots: usize,
+    /// Plots assigned to existing tracks.
+    pub assigned: usize,
+    /// Tracks initiated (tentative, or confirmed at once when `confirm_m = 2`).
+    pub initiated: Vec<TrackId>,
+    /// Tracks confirmed in this scan.
+    pub confirmed: Vec<TrackId>,
+    /// Tracks deleted in this scan.
+    pub deleted: Vec<TrackId>,
+}
+
+/// An unused plot waiting for a second one to start a track.
+#[derive(Debug, Clone, Copy)]
+struct Initiator {
+    time: f64,
+    position: Vector<2>,
+    covariance: Matrix<2, 2>,
+}
+
+/// The multi-target tracker (see the crate documentation).
+#[derive(Debug, Clone)]
+pub struct Tracker {
+    config: TrackerConfig,
+    filter: Kf<Cv2D>,
+    gate: Gate,
+    time: Option<f64>,
+    next_id: u64,
+    tracks: Vec<Track>,
+    deleted: Vec<Track>,
+    initiators: Vec<Initiator>,
+    // Scratch buffers reused from scan to scan.
+    grid: Grid,
+    models: Vec<CartesianPosition<4, 2>>,
+    predicted: Vec<Option<Gaussian<4>>>,
+    assigned: Vec<Option<usize>>,
+    used: Vec<bool>,
+    edges: Vec<Edge>,
+}
+
+impl Tracker {
+    /// A tracker with no tracks.
+    ///
+    /// # Errors
+    /// [`TrackerError::InvalidConfig`] naming the first bad field.
+    pub fn new(config: TrackerConfig) -> Result<Self, TrackerError> {
+        config.validate()?;
+        let filter = Kf::new(Cv2D::discrete(config.sigma_a)?);
+        let gate = Gate::from_probability(config.gate_probability, 2)?;
+        let grid = Grid::new(config.grid_cell);
+        Ok(Self {
+            config,
+            filter,
+            gate,
+            time: None,
+            next_id: 0,
+            tracks: Vec::new(),
+            deleted: Vec::new(),
+            initiators: Vec::new(),
+            grid,
+            models: Vec::new(),
+            predicted: Vec::new(),
+            assigned: Vec::new(),
+            used: Vec::new(),
+            edges: Vec::new(),
+        })
+    }
+
+    /// The configuration.
+    #[must_use]
+    pub fn config(&self) -> &TrackerConfig {
+        &self.config
+    }
+
+    /// The gate in use.
+    #[must_use]
+    pub fn gate(&self) -> &Gate {
+        &self.gate
+    }
+
+    /// The time of the last scan processed.
+    #[must_use]
+    pub fn time(&self) -> Option<f64> {
+        self.time
+    }
+
+    /// The live (tentative and confirmed) tracks, in id order.
+    #[must_use]
+    pub fn tracks(&self) -> &[Track] {
+        &self.tracks
+    }
+
+    /// The deleted tracks not yet taken, in order of deletion.
+    #[must_use]
+    pub fn deleted(&self) -> &[Track] {
+        &self.deleted
+    }
+
+    /// Takes the deleted tracks (so that memory does not grow in long runs).
+    pub fn take_deleted(&mut self) -> Vec<Track> {
+        std::mem::take(&mut self.deleted)
+    }
+
+    /// Checks one plot against the configuration and the time before it, and builds its
+    /// measurement model.
+    fn check_plot(
+        &self,
+        index: usize,
+        plot: &Plot,
+        previous: Option<f64>,
+    ) -> Result<CartesianPosition<4, 2>, TrackerError> {
+        let non_finite = |what| TrackerError::NonFinite {
+            index,
+            sensor: plot.sensor,
+            what,
+        };
+        if !plot.time.is_finite() {
+            return Err(non_finite("time"));
+        }
+        if !self.config.sensors.contains(&plot.sensor) {
+            return Err(TrackerError::UnknownSensor {
+                index,
+                time: plot.time,
+                sensor: plot.sensor,
+            });
+        }
+        if let Some(previous) = previous
+            && plot.time < previous
+        {
+            return Err(TrackerError::TimeOrder {
+                index,
+                time: plot.time,
+                previous,
+            });
+        }
+        if !plot.position.iter().all(|v| v.is_finite()) {
+            return Err(non_finite("position"));
+        }
+        if !plot.covariance.iter().all(|v| v.is_finite()) {
+            return Err(non_finite("covariance"));
+        }
+        CartesianPosition::<4, 2>::cv(plot.covariance).map_err(|source| {
+            TrackerError::PlotCovariance {
+                index,
+                time: plot.time,
+                sensor: plot.sensor,
+                source,
+            }
+        })
+    }
+
+    /// Processes a time-ordered stream of plots: consecutive plots with the same time
+    /// and sensor form one scan. Every plot is checked before any track is touched.
+    ///
+    /// A sensor scan with no plot at all still counts as a miss for every track; feed
+    /// it with [`Tracker::process_scan`].
+    ///
+    /// # Errors
+    /// [`TrackerError::TimeOrder`], [`TrackerError::UnknownSensor`],
+    /// [`TrackerError::NonFinite`], [`TrackerError::PlotCovariance`] naming the first
+    /// bad plot; the tracker is then unchanged.
+    pub fn process(&mut self, plots: &[Plot]) -> Result<Vec<ScanReport>, TrackerError> {
+        let mut previous = self.time;
+        for (index, plot) in plots.iter().enumerate() {
+            self.check_plot(index, plot, previous)?;
+            previous = Some(plot.time);
+        }
+        let mut reports = Vec::new();
+        let mut start = 0;
+        while start < plots.len() {
+            let (t, s) = (plots[start].time, plots[start].sensor);
+            let len = plots[start..]
+                .iter()
+                .take_while(|p| p.sensor == s && p.time.total_cmp(&t).is_eq())
+                .count();
+            reports.push(self.process_scan(t, s, &plots[start..start + len])?);
+            start += len;
+        }
+        Ok(reports)
+    }
+
+    /// Processes one scan: every plot of `plots` must have time `time` and sensor
+    /// `sensor` (an empty slice is a scan that saw nothing).
+    ///
+    /// Steps: predict every live track to `time`; gate the plots near each confirmed
+    /// track (grid query, then the chi-square gate on the innovation) and assign by GNN;
+    /// the same for tentative tracks with the plots left; update, count hits and
+    /// misses, confirm and delete; pair the plots still unused with earlier unused plots
+    /// through the velocity gate to initiate tentative tracks; keep the rest as
+    /// initiators.
+    ///
+    /// # Errors
+    /// As [`Tracker::process`], and [`TrackerError::MixedScan`] for a plot of another
+    /// time or sensor; the tracker is then unchanged. A track whose filter step fails is
+    /// deleted ([`DeletionReason::FilterFailure`]); the others go on.
+    pub fn process_scan(
+        &mut self,
+        time: f64,
+        sensor: SensorId,
+        plots: &[Plot],
+    ) -> Result<ScanReport, TrackerError> {
+        let scan_plot = Plot {
+            time,
+            sensor,
+            position: Vector::<2>::zeros(),
+            covariance: Matrix::<2, 2>::identity(),
+        };
+        self.check_plot(0, &scan_plot, self.time)?;
+        let mut models = std::mem::take(&mut self.models);
+        models.clear();
+        for (index, plot) in plots.iter().enumerate() {
+            if plot.sensor != sensor || !plot.time.total_cmp(&time).is_eq() {
+                self.models = models;
+                return Err(TrackerError::MixedScan {
+                    index,
+                    time,
+                    sensor,
+                });
+            }
+            match self.check_plot(index, plot, self.time) {
+                Ok(m) => models.push(m),
+                Err(e) => {
+                    self.models = models;
+                    return Err(e);
+                }
+            }
+        }
+        self.models = models;
+        Ok(self.run_scan(time, plots))
+    }
+
+    /// The scan proper, on checked plots (their models are in `self.models`).
+    fn run_scan(&mut self, time: f64, plots: &[Plot]) -> ScanReport {
+        let mut report = ScanReport {
+            time,
+            plots: plots.len(),
+            ..ScanReport::default()
+        };
+        self.time = Some(time);
+        self.grid.rebuild(plots.iter().map(|p| p.position));
+        self.used.clear();
+        self.used.resize(plots.len(), false);
+        // Largest plot variance per axis, for the grid query boxes.
+        let r_max = plots.iter().fold([0.0_f64; 2], |acc, p| {
+            [
+                acc[0].max(p.covariance[(0, 0)]),
+                acc[1].max(p.covariance[(1, 1)]),
+            ]
+        });
+
+        // 1. Predict.
+        self.predicted.clear();
+        for track in &self.tracks {
+            let dt = time - track.time;
+            let pred = if dt > 0.0 {
+                self.filter.predict(&track.estimate, dt).ok()
+            } else {
+                Some(track.estimate)
+            };
+            self.predicted.push(pred);
+        }
+
+        // 2–3. Gate and assign, confirmed tracks first, then tentative ones.
+        self.assigned.clear();
+        self.assigned.resize(self.tracks.len(), None);
+        for status in [TrackStatus::Confirmed, TrackStatus::Tentative] {
+            self.associate(status, plots, r_max);
+        }
+
+        // 4. Update, count, confirm, delete.
+        for (k, track) in self.tracks.iter_mut().enumerate() {
+            let Some(pred) = self.predicted[k].take() else {
+                track.delete(DeletionReason::FilterFailure);
+                report.deleted.push(track.id);
+                continue;
+            };
+            let hit = self.assigned[k];
+            let posterior = match hit {
+                Some(j) => self
+                    .filter
+                    .update(&pred, &self.models[j], &plots[j].position)
+                    .map(|(post, _)| post)
+                    .ok(),
+                None => Some(pred),
+            };
+            let Some(posterior) = posterior else {
+                track.delete(DeletionReason::FilterFailure);
+                report.deleted.push(track.id);
+                continue;
+            };
+            if hit.is_some() {
+                report.assigned += 1;
+            }
+            track.estimate = posterior;
+            track.time = time;
+            if let Some(event) = track.count(hit.is_some(), &self.config) {
+                match event {
+                    TrackStatus::Confirmed => report.confirmed.push(track.id),
+                    _ => report.deleted.push(track.id),
+                }
+            }
+        }
+
+        // 5. Initiate from unused plots.
+        self.initiate(time, plots, &mut report);
+
+        // Move the deleted tracks out.
+        self.deleted.extend(
+            self.tracks
+                .extract_if(.., |t| t.status == TrackStatus::Deleted),
+        );
+        report
+    }
+
+    /// Gates the unused plots against the tracks of one status and assigns by GNN.
+    fn associate(&mut self, status: TrackStatus, plots: &[Plot], r_max: [f64; 2]) {
+        let gamma = self.gate.gamma();
+        self.edges.clear();
+        let mut rows: Vec<usize> = Vec::new();
+        for (k, track) in self.tracks.iter().enumerate() {
+            if track.status != status {
+                continue;
+            }
+            let Some(pred) = self.predicted[k].as_ref() else {
+                continue;
+            };
+            let p = pred.cov();
+            let centre = Vector::<2>::new(pred.mean()[0], pred.mean()[2]);
+            let half = [
+                (gamma * (p[(0, 0)] + r_max[0])).sqrt(),
+                (gamma * (p[(2, 2)] + r_max[1])).sqrt(),
+            ];
+            let row = rows.len();
+            let (filter, models, used, edges) =
+                (&self.filter, &self.models, &self.used, &mut self.edges);
+            let mut any = false;
+            self.grid.query(&centre, half, |j| {
+                if used[j] {
+                    return;
+                }
+                let Ok(mp) = filter.predict_measurement(pred, &models[j]) else {
+                    return;
+                };
+                let Ok(innov) = mp.innovation(&models[j], &plots[j].position) else {
+                    return;
+                };
+                if innov.nis <= gamma {
+                    edges.push((row, j, innov.nis));
+                    any = true;
+                }
+            });
+            if any {
+                rows.push(k);
+            }
+        }
+        if rows.is_empty() {
+            return;
+        }
+        let miss = vec![gamma * (1.0 + 1e-9) + 1e-12; rows.len()];
+        let out = gnn(rows.len(), plots.len(), &self.edges, &miss);
+        for (row, col) in out.into_iter().enumerate() {
+            if let Some(j) = col {
+                self.assigned[rows[row]] = Some(j);
+                self.used[j] = true;
+            }
+        }
+    }
+
+    /// Two-point initiation: pairs earlier unused plots (initiators) with this scan's
+    /// unused plots through the velocity gate, by GNN on the normalised distance.
+    fn initiate(&mut self, time: f64, plots: &[Plot], report: &mut ScanReport) {
+        let cfg = &self.config;
+        self.initiators
+            .retain(|i| time - i.time <= cfg.max_initiation_interval);
+        self.edges.clear();
+        let plot_trace = r_max_trace(plots);
+        for (row, init) in self.initiators.iter().enumerate() {
+            let dt = time - init.time;
+            if dt <= 0.0 {
+                continue;
+            }
+            let r = cfg.max_speed * dt
+                + cfg.velocity_gate_sigmas * (init.covariance.trace() + plot_trace).sqrt();
+            let (used, edges) = (&self.used, &mut self.edges);
+            self.grid.query(&init.position, [r, r], |j| {
+                if used[j] {
+                    return;
+                }
+                let z2 = &plots[j];
+                let lim = cfg.max_speed * dt
+                    + cfg.velocity_gate_sigmas
+                        * (init.covariance.trace() + z2.covariance.trace()).sqrt();
+                let d = (z2.position - init.position).norm();
+                if d <= lim {
+                    edges.push((row, j, (d / lim).powi(2)));
+                }
+            });
+        }
+        let miss = vec![1.0 + 1e-9; self.initiators.len()];
+        let out = gnn(self.initiators.len(), plots.len(), &self.edges, &miss);
+        let mut matched = vec![false; self.initiators.len()];
+        for (row, col) in out.into_iter().enumerate() {
+            let Some(j) = col else { continue };
+            let init = self.initiators[row];
+            let z2 = &plots[j];
+            let Ok(estimate) = two_point_cv2(
+                &init.position,
+                &init.covariance,
+                &z2.position,
+                &z2.covariance,
+                time - init.time,
+            ) else {
+                continue;
+            };
+            matched[row] = true;
+            self.used[j] = true;
+            let id = TrackId(self.next_id);
+            self.next_id += 1;
+            let mut track = Track {
+                id,
+                status: TrackStatus::Tentative,
+                estimate,
+                time,
+                initiated: time,
+                confirmed_at: None,
+                opportunities: 2,
+                hits: 2,
+                consecutive_misses: 0,
+                deletion: None,
+                last_hit: true,
+            };
+            if self.config.confirm_m <= 2 {
+                track.status = TrackStatus::Confirmed;
+                track.confirmed_at = Some(time);
+                report.confirmed.push(id);
+            }
+            report.initiated.push(id);
+            self.tracks.push(track);
+        }
+        let mut k = 0;
+        self.initiators.retain(|_| {
+            k += 1;
+            !matched[k - 1]
+        });
+        for (j, plot) in plots.iter().enumerate() {
+            if !self.used[j] {
+                self.initiators.push(Initiator {
+                    time,
+                    position: plot.position,
+                    covariance: plot.covariance,
+                });
+            }
+        }
+    }
+}
+
+/// The largest plot covariance trace of a scan (for the initiation query box).
+fn r_max_trace(plots: &[Plot]) -> f64 {
+    plots
+        .iter()
+        .map(|p| p.covariance.trace())
+        .fold(0.0, f64::max)
+}
+
+impl Track {
+    pub(crate) fn delete(&mut self, reason: DeletionReason) {
+        self.status = TrackStatus::Deleted;
+        self.deletion = Some(reason);
+    }
+
+    /// Counts one opportunity; returns the new status when it changed.
+    fn count(&mut self, hit: bool, cfg: &TrackerConfig) -> Option<TrackStatus> {
+        self.opportunities += 1;
+        self.last_hit = hit;
+        if hit {
+            self.hits += 1;
+            self.consecutive_misses = 0;
+        } else {
+            self.consecutive_misses += 1;
+        }
+        if worst_position_sigma(self.estimate.cov()) > cfg.max_position_sigma {
+            self.delete(DeletionReason::CovarianceGrowth);
+            return Some(TrackStatus::Deleted);
+        }
+        match self.status {
+            TrackStatus::Tentative => {
+                if self.hits >= cfg.confirm_m {
+                    self.status = TrackStatus::Confirmed;
+                    self.confirmed_at = Some(self.time);
+                    Some(TrackStatus::Confirmed)
+                } else if i64::from(self.hits) + i64::from(cfg.confirm_n)
+                    - i64::from(self.opportunities)
+                    < i64::from(cfg.confirm_m)
+                {
+                    self.delete(DeletionReason::NotConfirmed);
+                    Some(TrackStatus::Deleted)
+                } else {
+                    None
+                }
+            }
+            TrackStatus::Confirmed if self.consecutive_misses >= cfg.max_misses => {
+                self.delete(DeletionReason::Misses);
+                Some(TrackStatus::Deleted)
+            }
+            _ => None,
+        }
+    }
+}
+
+/// Square root of the largest eigenvalue of the position block of `[x, vx, y, vy]`.
+fn worst_position_sigma(p: &Matrix<4, 4>) -> f64 {
+    let (a, b, c) = (p[(0, 0)], p[(0, 2)], p[(2, 2)]);
+    let half = 0.5 * (a - c);
+    (0.5 * (a + c) + (half * half + b * b).sqrt()).sqrt()
+}
