@@ -37,6 +37,91 @@ pub struct TrackerConfig {
     /// size of a confirmed track is best; a poor value costs time, never correctness.
     /// Default 2000.
     pub grid_cell: f64,
+    /// Track-score (SPRT) management instead of M-of-N when `Some`. Default `None`.
+    pub score: Option<ScoreConfig>,
+}
+
+/// Track-score management: each track carries the log-likelihood ratio `L` of "target"
+/// against "false track", tested sequentially (Wald's SPRT).
+///
+/// - first plot: `L = ln(β_NT / λ)`; second plot (initiation): `+ ln(P_D / (λ V_v))`, with
+///   `V_v = π r²` the velocity gate's area (no velocity prior, so the second plot is
+///   taken as uniform over it: an approximation);
+/// - each later scan: a hit adds `ln(P_D / λ) + ln N(ν; 0, S)`, a miss adds
+///   `ln(1 − P_D P_G)`;
+/// - a tentative track is confirmed at `L ≥ ln((1 − β)/α)` and deleted at
+///   `L ≤ ln(β/(1 − α))`; a confirmed track is deleted when `L` falls `delete_drop` below
+///   its peak (and still by misses and covariance growth).
+///
+/// For a false track `exp(L)` after initiation is a non-negative supermartingale under
+/// Poisson clutter of density `λ` (a hit's expected factor is `P_D P_G`, a miss's
+/// `1 − P_D P_G`), so by Ville's inequality it is confirmed with probability at most
+/// `exp(L₀ − ln((1 − β)/α))`, `L₀` its score at initiation.
+///
+/// # References
+/// S. Blackman, R. Popoli, *Design and Analysis of Modern Tracking Systems*, Artech
+/// House 1999, §6.2 (track score, eq. 6.11–6.13; SPRT thresholds); A. Wald,
+/// *Sequential Analysis*, 1947.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScoreConfig {
+    /// Detection probability `P_D` in (0, 1].
+    pub p_detection: f64,
+    /// Clutter density `λ` (false plots per m² per scan), > 0.
+    pub clutter_density: f64,
+    /// New-target density `β_NT` (per m² per scan), > 0.
+    pub new_target_density: f64,
+    /// `α`: probability of confirming a false track, in (0, 0.5).
+    pub false_confirm: f64,
+    /// `β`: probability of dropping a true tentative track, in (0, 0.5).
+    pub missed_confirm: f64,
+    /// A confirmed track is deleted when its score is this far below its peak (> 0).
+    pub delete_drop: f64,
+}
+
+impl ScoreConfig {
+    /// The confirmation threshold `ln((1 − β)/α)`.
+    #[must_use]
+    pub fn confirm_threshold(&self) -> f64 {
+        ((1.0 - self.missed_confirm) / self.false_confirm).ln()
+    }
+
+    /// The tentative deletion threshold `ln(β/(1 − α))`.
+    #[must_use]
+    pub fn delete_threshold(&self) -> f64 {
+        (self.missed_confirm / (1.0 - self.false_confirm)).ln()
+    }
+
+    fn validate(&self) -> Result<(), TrackerError> {
+        let bad = |field, value: f64, reason| {
+            Err(TrackerError::InvalidConfig {
+                field,
+                value,
+                reason,
+            })
+        };
+        let pd = self.p_detection;
+        if !(pd.is_finite() && pd > 0.0 && pd <= 1.0) {
+            return bad("score.p_detection", pd, "must lie in (0, 1]");
+        }
+        for (field, v) in [
+            ("score.clutter_density", self.clutter_density),
+            ("score.new_target_density", self.new_target_density),
+            ("score.delete_drop", self.delete_drop),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return bad(field, v, "must be finite and positive");
+            }
+        }
+        for (field, v) in [
+            ("score.false_confirm", self.false_confirm),
+            ("score.missed_confirm", self.missed_confirm),
+        ] {
+            if !(v.is_finite() && v > 0.0 && v < 0.5) {
+                return bad(field, v, "must lie in (0, 0.5)");
+            }
+        }
+        Ok(())
+    }
 }
 
 impl TrackerConfig {
@@ -55,6 +140,7 @@ impl TrackerConfig {
             max_misses: 3,
             max_position_sigma: 5000.0,
             grid_cell: 2000.0,
+            score: None,
         }
     }
 
@@ -108,6 +194,9 @@ impl TrackerConfig {
         }
         if self.max_misses == 0 {
             return bad("max_misses", 0.0, "must be at least 1");
+        }
+        if let Some(score) = &self.score {
+            score.validate()?;
         }
         Ok(())
     }

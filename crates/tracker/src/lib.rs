@@ -32,7 +32,9 @@
 //!    as that can no longer happen. A confirmed track is deleted after
 //!    [`TrackerConfig::max_misses`] consecutive misses. Any track is deleted when its
 //!    worst position standard deviation exceeds [`TrackerConfig::max_position_sigma`]
-//!    or its filter step fails. Ids are never reused.
+//!    or its filter step fails. Ids are never reused. With
+//!    [`TrackerConfig::score`] set, confirmation and deletion follow the track score
+//!    (log-likelihood ratio, SPRT) instead of M-of-N: see [`ScoreConfig`].
 //! 5. **Initiation.** Plots used by no track are paired with unused plots of earlier
 //!    scans (at most [`TrackerConfig::max_initiation_interval`] old) through the
 //!    velocity gate `‖z₂ − z₁‖ ≤ v_max Δt + k √tr(R₁ + R₂)` (GNN again, on the
@@ -62,7 +64,7 @@
 //! # Not yet here
 //! Polar plots go in after conversion (`argus_sensors::convert_polar`) by the caller;
 //! the per-track estimator is the CV Kalman filter only (EKF, IMM by configuration
-//! later); JPDA and the track-score (SPRT) initiation are not built yet.
+//! later); JPDA is not built yet.
 //!
 //! # Example
 //! ```
@@ -91,7 +93,7 @@ mod grid;
 mod track;
 mod tracker;
 
-pub use config::TrackerConfig;
+pub use config::{ScoreConfig, TrackerConfig};
 pub use error::TrackerError;
 pub use track::{DeletionReason, SensorId, Track, TrackId, TrackStatus};
 pub use tracker::{Plot, ScanReport, Tracker};

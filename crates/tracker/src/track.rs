@@ -32,6 +32,9 @@ pub enum DeletionReason {
     CovarianceGrowth,
     /// Its filter step failed numerically (the other tracks are unaffected).
     FilterFailure,
+    /// Its track score fell below the SPRT deletion threshold (tentative) or too far
+    /// below its peak (confirmed).
+    Score,
 }
 
 /// One track: a CV estimate `[x, vx, y, vy]` with its history counters.
@@ -48,6 +51,8 @@ pub struct Track {
     pub(crate) consecutive_misses: u32,
     pub(crate) deletion: Option<DeletionReason>,
     pub(crate) last_hit: bool,
+    pub(crate) score: f64,
+    pub(crate) peak_score: f64,
 }
 
 impl Track {
@@ -110,6 +115,13 @@ impl Track {
     #[must_use]
     pub fn last_hit(&self) -> bool {
         self.last_hit
+    }
+
+    /// Its track score (log-likelihood ratio), kept when
+    /// [`crate::TrackerConfig::score`] is set, 0 otherwise.
+    #[must_use]
+    pub fn score(&self) -> f64 {
+        self.score
     }
 
     /// Why it was deleted, when it was.

@@ -310,11 +310,11 @@ impl Tracker {
                 Some(j) => self
                     .filter
                     .update(&pred, &self.models[j], &plots[j].position)
-                    .map(|(post, _)| post)
+                    .map(|(post, innov)| (post, Some(innov.log_likelihood)))
                     .ok(),
-                None => Some(pred),
+                None => Some((pred, None)),
             };
-            let Some(posterior) = posterior else {
+            let Some((posterior, log_likelihood)) = posterior else {
                 track.delete(DeletionReason::FilterFailure);
                 report.deleted.push(track.id);
                 continue;
@@ -324,6 +324,13 @@ impl Tracker {
             }
             track.estimate = posterior;
             track.time = time;
+            if let Some(sc) = &self.config.score {
+                track.score += match log_likelihood {
+                    Some(ll) => (sc.p_detection / sc.clutter_density).ln() + ll,
+                    None => (1.0 - sc.p_detection * self.gate.p_gate()).ln(),
+                };
+                track.peak_score = track.peak_score.max(track.score);
+            }
             if let Some(event) = track.count(hit.is_some(), &self.config) {
                 match event {
                     TrackStatus::Confirmed => report.confirmed.push(track.id),
@@ -434,12 +441,21 @@ impl Tracker {
             let Some(j) = col else { continue };
             let init = self.initiators[row];
             let z2 = &plots[j];
+            let dt = time - init.time;
+            let score = self.config.score.map_or(0.0, |sc| {
+                let lim = self.config.max_speed * dt
+                    + self.config.velocity_gate_sigmas
+                        * (init.covariance.trace() + z2.covariance.trace()).sqrt();
+                let v_gate = std::f64::consts::PI * lim * lim;
+                (sc.new_target_density / sc.clutter_density).ln()
+                    + (sc.p_detection / (sc.clutter_density * v_gate)).ln()
+            });
             let Ok(estimate) = two_point_cv2(
                 &init.position,
                 &init.covariance,
                 &z2.position,
                 &z2.covariance,
-                time - init.time,
+                dt,
             ) else {
                 continue;
             };
@@ -459,8 +475,14 @@ impl Tracker {
                 consecutive_misses: 0,
                 deletion: None,
                 last_hit: true,
+                score,
+                peak_score: score,
             };
-            if self.config.confirm_m <= 2 {
+            let confirm_now = match &self.config.score {
+                Some(sc) => score >= sc.confirm_threshold(),
+                None => self.config.confirm_m <= 2,
+            };
+            if confirm_now {
                 track.status = TrackStatus::Confirmed;
                 track.confirmed_at = Some(time);
                 report.confirmed.push(id);
@@ -513,6 +535,9 @@ impl Track {
             self.delete(DeletionReason::CovarianceGrowth);
             return Some(TrackStatus::Deleted);
         }
+        if let Some(sc) = &cfg.score {
+            return self.count_score(sc, cfg);
+        }
         match self.status {
             TrackStatus::Tentative => {
                 if self.hits >= cfg.confirm_m {
@@ -528,6 +553,32 @@ impl Track {
                 } else {
                     None
                 }
+            }
+            TrackStatus::Confirmed if self.consecutive_misses >= cfg.max_misses => {
+                self.delete(DeletionReason::Misses);
+                Some(TrackStatus::Deleted)
+            }
+            _ => None,
+        }
+    }
+}
+
+impl Track {
+    /// Status change by track score (see [`crate::ScoreConfig`]).
+    fn count_score(&mut self, sc: &crate::ScoreConfig, cfg: &TrackerConfig) -> Option<TrackStatus> {
+        match self.status {
+            TrackStatus::Tentative if self.score >= sc.confirm_threshold() => {
+                self.status = TrackStatus::Confirmed;
+                self.confirmed_at = Some(self.time);
+                Some(TrackStatus::Confirmed)
+            }
+            TrackStatus::Tentative if self.score <= sc.delete_threshold() => {
+                self.delete(DeletionReason::Score);
+                Some(TrackStatus::Deleted)
+            }
+            TrackStatus::Confirmed if self.peak_score - self.score >= sc.delete_drop => {
+                self.delete(DeletionReason::Score);
+                Some(TrackStatus::Deleted)
             }
             TrackStatus::Confirmed if self.consecutive_misses >= cfg.max_misses => {
                 self.delete(DeletionReason::Misses);
