@@ -39,6 +39,27 @@ pub struct TrackerConfig {
     pub grid_cell: f64,
     /// Track-score (SPRT) management instead of M-of-N when `Some`. Default `None`.
     pub score: Option<ScoreConfig>,
+    /// The estimator each track runs. Default [`EstimatorConfig::Kf`].
+    pub estimator: EstimatorConfig,
+}
+
+/// The per-track estimator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EstimatorConfig {
+    /// A Kalman filter on the CV model with [`TrackerConfig::sigma_a`].
+    Kf,
+    /// A two-mode IMM of CV Kalman filters, a quiet mode (`sigma_a_low`) and a
+    /// manoeuvre mode (`sigma_a_high`), with probability `p_stay` of staying in a mode
+    /// from one scan to the next, both modes equally likely at initiation. Gating uses
+    /// the moment-matched predicted estimate; the score uses the IMM's total likelihood.
+    ImmCv2 {
+        /// Acceleration standard deviation of the quiet mode (m/s²).
+        sigma_a_low: f64,
+        /// Acceleration standard deviation of the manoeuvre mode (m/s²).
+        sigma_a_high: f64,
+        /// Probability of staying in a mode, in (0, 1).
+        p_stay: f64,
+    },
 }
 
 /// Track-score management: each track carries the log-likelihood ratio `L` of "target"
@@ -141,6 +162,7 @@ impl TrackerConfig {
             max_position_sigma: 5000.0,
             grid_cell: 2000.0,
             score: None,
+            estimator: EstimatorConfig::Kf,
         }
     }
 
@@ -197,6 +219,24 @@ impl TrackerConfig {
         }
         if let Some(score) = &self.score {
             score.validate()?;
+        }
+        if let EstimatorConfig::ImmCv2 {
+            sigma_a_low,
+            sigma_a_high,
+            p_stay,
+        } = self.estimator
+        {
+            for (field, v) in [
+                ("estimator.sigma_a_low", sigma_a_low),
+                ("estimator.sigma_a_high", sigma_a_high),
+            ] {
+                if !(v.is_finite() && v >= 0.0) {
+                    return bad(field, v, "must be finite and non-negative");
+                }
+            }
+            if !(p_stay.is_finite() && p_stay > 0.0 && p_stay < 1.0) {
+                return bad("estimator.p_stay", p_stay, "must lie in (0, 1)");
+            }
         }
         Ok(())
     }

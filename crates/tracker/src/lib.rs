@@ -2,9 +2,10 @@
 //!
 //! A [`Tracker`] consumes a time-ordered stream of 2-D Cartesian position [`Plot`]s
 //! (each with its covariance, e.g. a converted polar plot) from one or more sensors,
-//! scan by scan, and maintains many [`Track`]s, each with its own Kalman filter on a
-//! constant-velocity model (`[x, vx, y, vy]`, [`argus_filters::Kf`] on
-//! [`argus_motion_models::Cv2D`]).
+//! scan by scan, and maintains many [`Track`]s, each with its own estimator on the
+//! constant-velocity state `[x, vx, y, vy]`: a Kalman filter ([`argus_filters::Kf`] on
+//! [`argus_motion_models::Cv2D`]) or a two-mode CV IMM ([`argus_imm::Imm`]), chosen by
+//! [`TrackerConfig::estimator`].
 //!
 //! # One scan
 //! 1. Every live track is predicted to the scan time.
@@ -63,8 +64,7 @@
 //!
 //! # Not yet here
 //! Polar plots go in after conversion (`argus_sensors::convert_polar`) by the caller;
-//! the per-track estimator is the CV Kalman filter only (EKF, IMM by configuration
-//! later); JPDA is not built yet.
+//! EKF and coordinated-turn IMM estimators per track, and JPDA, are not built yet.
 //!
 //! # Example
 //! ```
@@ -93,7 +93,7 @@ mod grid;
 mod track;
 mod tracker;
 
-pub use config::{ScoreConfig, TrackerConfig};
+pub use config::{EstimatorConfig, ScoreConfig, TrackerConfig};
 pub use error::TrackerError;
 pub use track::{DeletionReason, SensorId, Track, TrackId, TrackStatus};
 pub use tracker::{Plot, ScanReport, Tracker};

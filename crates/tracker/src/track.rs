@@ -1,6 +1,7 @@
 //! Tracks, their ids and statuses.
 
 use argus_core_math::Gaussian;
+use argus_imm::ImmEstimate;
 
 /// A track's id: numbered from 0 in order of initiation and never reused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -53,6 +54,7 @@ pub struct Track {
     pub(crate) last_hit: bool,
     pub(crate) score: f64,
     pub(crate) peak_score: f64,
+    pub(crate) imm: Option<ImmEstimate<4, 2>>,
 }
 
 impl Track {
@@ -69,7 +71,7 @@ impl Track {
     }
 
     /// The estimate `[x, vx, y, vy]` at [`Track::time`] (updated when the last scan
-    /// had a plot for it, predicted otherwise).
+    /// had a plot for it, predicted otherwise; the moment-matched one for an IMM).
     #[must_use]
     pub fn estimate(&self) -> &Gaussian<4> {
         &self.estimate
@@ -115,6 +117,12 @@ impl Track {
     #[must_use]
     pub fn last_hit(&self) -> bool {
         self.last_hit
+    }
+
+    /// The IMM mode probabilities (quiet, manoeuvre) when the estimator is an IMM.
+    #[must_use]
+    pub fn mode_probabilities(&self) -> Option<[f64; 2]> {
+        self.imm.as_ref().map(ImmEstimate::mode_probabilities)
     }
 
     /// Its track score (log-likelihood ratio), kept when

@@ -3,12 +3,16 @@
 use argus_association::Gate;
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Kf, two_point_cv2};
+use argus_imm::{Imm, ImmEstimate, ImmPrediction, MarkovMatrix, moment_match};
 use argus_motion_models::Cv2D;
 use argus_sensors::CartesianPosition;
 
 use crate::assign::{Edge, gnn};
 use crate::grid::Grid;
-use crate::{DeletionReason, SensorId, Track, TrackId, TrackStatus, TrackerConfig, TrackerError};
+use crate::{
+    DeletionReason, EstimatorConfig, SensorId, Track, TrackId, TrackStatus, TrackerConfig,
+    TrackerError,
+};
 
 /// One Cartesian position plot `(x, y)` with its covariance (e.g. a converted polar
 /// plot), from one sensor at one time.
@@ -54,6 +58,7 @@ struct Initiator {
 pub struct Tracker {
     config: TrackerConfig,
     filter: Kf<Cv2D>,
+    imm: Option<Imm<Kf<Cv2D>, 4, 2>>,
     gate: Gate,
     time: Option<f64>,
     next_id: u64,
@@ -64,6 +69,7 @@ pub struct Tracker {
     grid: Grid,
     models: Vec<CartesianPosition<4, 2>>,
     predicted: Vec<Option<Gaussian<4>>>,
+    imm_predicted: Vec<Option<ImmPrediction<4, 2>>>,
     assigned: Vec<Option<usize>>,
     used: Vec<bool>,
     edges: Vec<Edge>,
@@ -77,11 +83,38 @@ impl Tracker {
     pub fn new(config: TrackerConfig) -> Result<Self, TrackerError> {
         config.validate()?;
         let filter = Kf::new(Cv2D::discrete(config.sigma_a)?);
+        let imm = match config.estimator {
+            EstimatorConfig::Kf => None,
+            EstimatorConfig::ImmCv2 {
+                sigma_a_low,
+                sigma_a_high,
+                p_stay,
+            } => {
+                let markov = MarkovMatrix::new([[p_stay, 1.0 - p_stay], [1.0 - p_stay, p_stay]])
+                    .map_err(|_| TrackerError::InvalidConfig {
+                        field: "estimator.p_stay",
+                        value: p_stay,
+                        reason: "does not make a Markov matrix",
+                    })?;
+                let filters = [
+                    Kf::new(Cv2D::discrete(sigma_a_low)?),
+                    Kf::new(Cv2D::discrete(sigma_a_high)?),
+                ];
+                Some(
+                    Imm::new(filters, markov).map_err(|_| TrackerError::InvalidConfig {
+                        field: "estimator",
+                        value: p_stay,
+                        reason: "the IMM rejected it",
+                    })?,
+                )
+            }
+        };
         let gate = Gate::from_probability(config.gate_probability, 2)?;
         let grid = Grid::new(config.grid_cell);
         Ok(Self {
             config,
             filter,
+            imm,
             gate,
             time: None,
             next_id: 0,
@@ -91,6 +124,7 @@ impl Tracker {
             grid,
             models: Vec::new(),
             predicted: Vec::new(),
+            imm_predicted: Vec::new(),
             assigned: Vec::new(),
             used: Vec::new(),
             edges: Vec::new(),
@@ -281,14 +315,33 @@ impl Tracker {
 
         // 1. Predict.
         self.predicted.clear();
+        self.imm_predicted.clear();
         for track in &self.tracks {
             let dt = time - track.time;
-            let pred = if dt > 0.0 {
-                self.filter.predict(&track.estimate, dt).ok()
-            } else {
-                Some(track.estimate)
-            };
-            self.predicted.push(pred);
+            match (&self.imm, &track.imm) {
+                (Some(imm), Some(est)) => {
+                    let p = if dt > 0.0 {
+                        imm.predict(est, dt).ok()
+                    } else {
+                        Some(est.into_prediction())
+                    };
+                    let combined = p.as_ref().and_then(|p| {
+                        let w = p.log_predicted_probabilities().map(f64::exp);
+                        moment_match(&w, p.modes()).ok()
+                    });
+                    self.predicted.push(combined);
+                    self.imm_predicted.push(p);
+                }
+                _ => {
+                    let pred = if dt > 0.0 {
+                        self.filter.predict(&track.estimate, dt).ok()
+                    } else {
+                        Some(track.estimate)
+                    };
+                    self.predicted.push(pred);
+                    self.imm_predicted.push(None);
+                }
+            }
         }
 
         // 2–3. Gate and assign, confirmed tracks first, then tentative ones.
@@ -306,13 +359,21 @@ impl Tracker {
                 continue;
             };
             let hit = self.assigned[k];
-            let posterior = match hit {
-                Some(j) => self
-                    .filter
-                    .update(&pred, &self.models[j], &plots[j].position)
-                    .map(|(post, innov)| (post, Some(innov.log_likelihood)))
-                    .ok(),
-                None => Some((pred, None)),
+            let (posterior, imm_posterior) = match (&self.imm, self.imm_predicted[k].take()) {
+                (Some(imm), Some(ip)) => {
+                    imm_step(imm, ip, hit.map(|j| (&self.models[j], &plots[j])))
+                }
+                _ => (
+                    match hit {
+                        Some(j) => self
+                            .filter
+                            .update(&pred, &self.models[j], &plots[j].position)
+                            .map(|(post, innov)| (post, Some(innov.log_likelihood)))
+                            .ok(),
+                        None => Some((pred, None)),
+                    },
+                    None,
+                ),
             };
             let Some((posterior, log_likelihood)) = posterior else {
                 track.delete(DeletionReason::FilterFailure);
@@ -323,6 +384,7 @@ impl Tracker {
                 report.assigned += 1;
             }
             track.estimate = posterior;
+            track.imm = imm_posterior;
             track.time = time;
             if let Some(sc) = &self.config.score {
                 track.score += match log_likelihood {
@@ -477,7 +539,14 @@ impl Tracker {
                 last_hit: true,
                 score,
                 peak_score: score,
+                imm: None,
             };
+            if self.imm.is_some() {
+                match ImmEstimate::from_common(estimate, [0.5, 0.5]) {
+                    Ok(e) => track.imm = Some(e),
+                    Err(_) => continue,
+                }
+            }
             let confirm_now = match &self.config.score {
                 Some(sc) => score >= sc.confirm_threshold(),
                 None => self.config.confirm_m <= 2,
@@ -504,6 +573,29 @@ impl Tracker {
                 });
             }
         }
+    }
+}
+
+/// One IMM update (or coast through a miss): the moment-matched posterior with the
+/// plot's total log-likelihood, and the IMM estimate; `None` posterior on failure.
+fn imm_step(
+    imm: &Imm<Kf<Cv2D>, 4, 2>,
+    pred: ImmPrediction<4, 2>,
+    hit: Option<(&CartesianPosition<4, 2>, &Plot)>,
+) -> (
+    Option<(Gaussian<4>, Option<f64>)>,
+    Option<ImmEstimate<4, 2>>,
+) {
+    let (est, ll) = match hit {
+        Some((model, plot)) => match imm.update(&pred, model, &plot.position) {
+            Ok(u) => (u.estimate, Some(u.log_likelihood)),
+            Err(_) => return (None, None),
+        },
+        None => (pred.into_estimate(), None),
+    };
+    match est.combined() {
+        Ok(c) => (Some((c, ll)), Some(est)),
+        Err(_) => (None, None),
     }
 }
 
