@@ -2,6 +2,7 @@
 
 use argus_core_math::MathError;
 use argus_filters::FilterError;
+use argus_sensors::SensorError;
 
 /// What went wrong in an IMM or multi-IMM step. The estimate passed in is never modified.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -18,6 +19,9 @@ pub enum ImmError {
     /// A numerical check failed outside a mode filter (mixing, combination, conversion).
     #[error(transparent)]
     Math(#[from] MathError),
+    /// The polar conversion rejected a plot (zero range, non-finite value).
+    #[error(transparent)]
+    Sensor(#[from] SensorError),
     /// A set that must not be empty is empty (no modes, no noise hypotheses).
     #[error("{what} is empty")]
     Empty {

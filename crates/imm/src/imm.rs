@@ -52,6 +52,17 @@ impl<const N: usize, const R: usize> ImmEstimate<N, R> {
         &self.log_mu
     }
 
+    /// The estimate as a "prediction" for a plot of the same instant as the last one: no
+    /// mixing and no motion (`μ̄ = μ`), so that [`Imm::update`] can apply several plots of
+    /// one scan (several sensors) in turn.
+    #[must_use]
+    pub fn into_prediction(self) -> ImmPrediction<N, R> {
+        ImmPrediction {
+            predicted: self.modes,
+            log_cbar: self.log_mu,
+        }
+    }
+
     /// The combined output, seed 000 eq (7): `x = Σ μⱼ x̂ⱼ`,
     /// `P = Σ μⱼ [Pⱼ + (x̂ⱼ − x)(x̂ⱼ − x)ᵀ]`.
     ///
@@ -75,7 +86,9 @@ pub fn moment_match<const N: usize, const K: usize>(
 ) -> Result<Gaussian<N>, ImmError> {
     let mut mean = Vector::<N>::zeros();
     for (w, g) in weights.iter().zip(parts) {
-        mean += g.mean() * *w;
+        if *w > 0.0 {
+            mean += g.mean() * *w;
+        }
     }
     let mut cov = Matrix::<N, N>::zeros();
     for (w, g) in weights.iter().zip(parts) {
@@ -180,22 +193,41 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
     /// # Errors
     /// [`ImmError::Math`] if a mixed covariance is not positive definite.
     pub fn mix(&self, est: &ImmEstimate<N, R>) -> Result<([Gaussian<N>; R], [f64; R]), ImmError> {
-        let log_pi = self.markov.log_matrix();
+        // Linear arithmetic on μ scaled by the largest one (R exponentials, not R²); a mode
+        // whose predicted probability would underflow (every contribution below e^{-690}
+        // of the largest) falls back to log-sum-exp, so nothing is lost to underflow.
+        let pi = self.markov.matrix();
+        let max = est.log_mu.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let scaled = est.log_mu.map(|l| (l - max).exp());
         let mut log_cbar = [f64::NEG_INFINITY; R];
         let mut mixed = est.modes;
-        let mut terms = [f64::NEG_INFINITY; R];
         for j in 0..R {
-            for (i, t) in terms.iter_mut().enumerate() {
-                *t = log_pi[(i, j)] + est.log_mu[i];
+            let mut w = [0.0; R];
+            let mut c = 0.0;
+            for (i, (wi, mu)) in w.iter_mut().zip(&scaled).enumerate() {
+                *wi = pi[(i, j)] * mu;
+                c += *wi;
             }
-            let lc = log_sum_exp(&terms);
-            log_cbar[j] = lc;
-            if lc == f64::NEG_INFINITY {
-                // Mode j cannot be reached: its probability is zero; keep its own estimate.
-                continue;
+            if c > 1e-300 && c.is_finite() {
+                log_cbar[j] = c.ln() + max;
+                for wi in &mut w {
+                    *wi /= c;
+                }
+            } else {
+                let log_pi = self.markov.log_matrix();
+                let mut terms = [f64::NEG_INFINITY; R];
+                for (i, t) in terms.iter_mut().enumerate() {
+                    *t = log_pi[(i, j)] + est.log_mu[i];
+                }
+                let lc = log_sum_exp(&terms);
+                log_cbar[j] = lc;
+                if lc == f64::NEG_INFINITY {
+                    // Mode j cannot be reached: its probability is zero; keep its own estimate.
+                    continue;
+                }
+                w = terms.map(|t| (t - lc).exp());
             }
-            let weights = terms.map(|t| (t - lc).exp());
-            mixed[j] = moment_match(&weights, &est.modes)?;
+            mixed[j] = moment_match(&w, &est.modes)?;
         }
         Ok((mixed, log_cbar))
     }

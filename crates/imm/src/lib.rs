@@ -33,6 +33,7 @@
 
 mod embed;
 mod error;
+mod evidence;
 mod imm;
 mod markov;
 mod multi;
@@ -46,6 +47,7 @@ mod tests;
 
 pub use embed::Embedded;
 pub use error::ImmError;
+pub use evidence::{EvidenceEstimate, EvidenceNoiseImm};
 pub use imm::{Imm, ImmEstimate, ImmPrediction, ImmUpdate, moment_match};
 pub use markov::{MarkovMatrix, PROBABILITY_SUM_TOL, log_probabilities, log_sum_exp};
 pub use multi::{MultiImm, MultiImmEstimate, MultiImmUpdate, NoiseGrid};

@@ -2,7 +2,7 @@
 //! Cartesian position measurement that the multi-IMM applies with each IMM's own `R`.
 
 use argus_core_math::{Matrix, Vector};
-use argus_sensors::{LinearMeasurementModel, MeasurementModel};
+use argus_sensors::{ConversionMethod, LinearMeasurementModel, MeasurementModel, convert_polar};
 
 use crate::ImmError;
 
@@ -110,7 +110,8 @@ impl NoiseVariances {
 }
 
 /// The unbiased conversion of a polar plot to Cartesian position, with the
-/// measurement-conditioned covariance.
+/// measurement-conditioned covariance: [`argus_sensors::convert_polar`] with
+/// [`ConversionMethod::Unbiased`], for variances instead of standard deviations.
 ///
 /// With `λ = e^{−σθ²/2}`, `λ' = e^{−2σθ²}`:
 /// `x = r cos θ / λ`, `y = r sin θ / λ`, and
@@ -124,25 +125,21 @@ impl NoiseVariances {
 /// §10.4.3. Seed 000 §3.1 uses it ("covariance of the unbiased conversion").
 ///
 /// # Errors
-/// [`ImmError::Math`] if the covariance is not positive definite (range zero).
+/// [`ImmError::Sensor`] for a zero range; [`ImmError::Math`] if the covariance is not
+/// positive definite.
 pub fn unbiased_conversion(
     plot: &PolarPlot,
     var: &NoiseVariances,
 ) -> Result<(Vector<2>, Matrix<2, 2>), ImmError> {
-    let (s, c) = plot.azimuth.sin_cos();
-    let r = plot.range;
-    let lam = (-0.5 * var.azimuth).exp();
-    let lam2 = (-2.0 * var.azimuth).exp();
-    let a = (1.0 / (lam * lam) - 2.0) * r * r;
-    let b = 0.5 * (r * r + var.range);
-    let c2 = c * c - s * s;
-    let s2 = 2.0 * s * c;
-    let r11 = a * c * c + b * (1.0 + lam2 * c2);
-    let r22 = a * s * s + b * (1.0 - lam2 * c2);
-    let r12 = a * c * s + b * lam2 * s2;
-    let cov = Matrix::<2, 2>::new(r11, r12, r12, r22);
-    argus_core_math::SpdFactor::new_symmetric(&cov, "converted measurement covariance")?;
-    Ok((Vector::<2>::new(r * c / lam, r * s / lam), cov))
+    let c = convert_polar(
+        plot.range,
+        plot.azimuth,
+        var.range.sqrt(),
+        var.azimuth.sqrt(),
+        ConversionMethod::Unbiased,
+    )?;
+    argus_core_math::SpdFactor::new_symmetric(&c.covariance, "converted measurement covariance")?;
+    Ok((c.position, c.covariance))
 }
 
 /// A Cartesian position measurement `z = H x + w`, `w ~ N(0, R)`, of an `N`-state whose
@@ -219,7 +216,7 @@ pub trait PlotConversion<const N: usize, const M: usize> {
         var: &NoiseVariances,
     ) -> Result<(Self::Measurement, Vector<M>), ImmError>;
 
-    /// The target position `(x, y)` in the state, for polar residuals.
+    /// The target position `(x, y)` relative to the radar, for polar residuals.
     fn position(&self, x: &Vector<N>) -> Vector<2>;
 
     /// The `2 × 2` covariance of the position in a state covariance `P`.
@@ -230,6 +227,7 @@ pub trait PlotConversion<const N: usize, const M: usize> {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct UnbiasedConversion<const N: usize> {
     h: Matrix<2, N>,
+    origin: Vector<2>,
 }
 
 impl<const N: usize> UnbiasedConversion<N> {
@@ -240,7 +238,27 @@ impl<const N: usize> UnbiasedConversion<N> {
     pub fn new(px: usize, py: usize) -> Result<Self, ImmError> {
         Ok(Self {
             h: position_selector::<N>(px, py)?,
+            origin: Vector::<2>::zeros(),
         })
+    }
+
+    /// The same conversion for a radar at `origin` (`[x, y]`, m): plots are relative to
+    /// it, converted positions are global.
+    ///
+    /// # Errors
+    /// [`ImmError::InvalidParameter`] for a non-finite coordinate.
+    pub fn at(mut self, origin: [f64; 2]) -> Result<Self, ImmError> {
+        for v in origin {
+            if !v.is_finite() {
+                return Err(ImmError::InvalidParameter {
+                    what: "radar position",
+                    value: v,
+                    reason: "must be finite",
+                });
+            }
+        }
+        self.origin = Vector::<2>::new(origin[0], origin[1]);
+        Ok(self)
     }
 }
 
@@ -253,11 +271,11 @@ impl<const N: usize> PlotConversion<N, 2> for UnbiasedConversion<N> {
         var: &NoiseVariances,
     ) -> Result<(PositionMeasurement<N>, Vector<2>), ImmError> {
         let (z, r) = unbiased_conversion(plot, var)?;
-        Ok((PositionMeasurement { h: self.h, r }, z))
+        Ok((PositionMeasurement { h: self.h, r }, z + self.origin))
     }
 
     fn position(&self, x: &Vector<N>) -> Vector<2> {
-        self.h * x
+        self.h * x - self.origin
     }
 
     fn position_cov(&self, p: &Matrix<N, N>) -> Matrix<2, 2> {

@@ -140,8 +140,10 @@ fn advance(x: Vector<4>, w: f64, t: f64) -> Vector<4> {
 /// The gimpo truth at time `t` (SPEC §000).
 pub(crate) fn truth_at(t: f64) -> Vector<4> {
     let mut x = Vector::<4>::new(-60_000.0, 90.0, -20_000.0, 0.0);
+    // Exploration only: EV_STRAIGHT=1 removes the turns (a maneuver-free reference).
+    let straight = std::env::var("EV_STRAIGHT").is_ok();
     for (start, dur, wdeg) in SEGMENTS {
-        let w = wdeg.to_radians();
+        let w = if straight { 0.0 } else { wdeg.to_radians() };
         if t <= start + dur {
             return advance(x, w, t - start);
         }

@@ -102,6 +102,16 @@ fn tiny_likelihoods_do_not_underflow() {
     assert!((mu.iter().sum::<f64>() - 1.0).abs() < 1e-12);
     assert!(mu[1] > 0.999);
     assert!(upd.estimate.log_mode_probabilities()[0].is_finite());
+    // Mixing keeps it: with Π = I, mode 0 is fed only by itself (μ ≈ e^{-1e6}, which the
+    // scaled linear mixing cannot represent); the log-space fallback gives ln μ̄₀ = ln μ₀.
+    let stay = Imm::new(
+        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        MarkovMatrix::new([[1.0, 0.0], [0.0, 1.0]]).unwrap(),
+    )
+    .unwrap();
+    let pred = stay.predict(&upd.estimate, 1.0).unwrap();
+    let l0 = upd.estimate.log_mode_probabilities()[0];
+    assert!((pred.log_predicted_probabilities()[0] - l0).abs() < 1e-9 * l0.abs());
 }
 
 #[test]
@@ -144,6 +154,11 @@ fn bad_input_is_rejected_and_the_estimate_is_untouched() {
     );
     let var = NoiseVariances::new(1.0, 1.0).unwrap();
     assert!(VariationalEstimate::new(est, var, -1.0).is_err());
+    assert!(EvidenceEstimate::new(est, var, 0.0).is_err());
+    assert!(EvidenceNoiseImm::new(paper_imm(), 0.0, 1.0, None).is_err());
+    assert!(EvidenceNoiseImm::new(paper_imm(), 0.2, 1.5, None).is_err());
+    assert!(EvidenceNoiseImm::new(paper_imm(), 0.2, 1.0, Some(1.0)).is_err());
+    assert!(EvidenceNoiseImm::new(paper_imm(), f64::NAN, 1.0, None).is_err());
     assert!(Embedded::<Motion, 4, 3>::new(Motion::Cv { sv: 1.0 }, 0.0).is_err());
     assert!(Embedded::<Motion, 4, 5>::new(Motion::Cv { sv: 1.0 }, -1.0).is_err());
 }
@@ -209,8 +224,19 @@ struct Outcome {
 #[derive(Debug, Clone, Copy)]
 enum Estimator {
     Fixed,
-    Paper { p: f64, clip: Option<f64> },
-    Variational { rho: f64 },
+    Paper {
+        p: f64,
+        clip: Option<f64>,
+    },
+    Variational {
+        rho: f64,
+    },
+    Evidence {
+        spacing: f64,
+        rho: f64,
+        clip: Option<f64>,
+        settle: Option<usize>,
+    },
 }
 
 fn run_one(kind: Estimator, start_factor: f64, times: &[f64], pl: &[PolarPlot]) -> Outcome {
@@ -266,6 +292,26 @@ fn run_one(kind: Estimator, start_factor: f64, times: &[f64], pl: &[PolarPlot]) 
                 score(times[k], est.imm().combined().unwrap().mean(), &mut out);
             }
             let r = est.variances().unwrap();
+            out.ratio = [r.range() / truth.range(), r.azimuth() / truth.azimuth()];
+        }
+        Estimator::Evidence {
+            spacing,
+            rho,
+            clip,
+            settle,
+        } => {
+            let mut v = EvidenceNoiseImm::new(imm, spacing, rho, clip).unwrap();
+            if let Some(k) = settle {
+                v = v.with_post_fit(k);
+            }
+            let mut est = EvidenceEstimate::new(init, var0, 2.0).unwrap();
+            for k in 2..times.len() {
+                est = v
+                    .step(&est, times[k] - times[k - 1], &pl[k], &conv)
+                    .unwrap();
+                score(times[k], est.combined().unwrap().mean(), &mut out);
+            }
+            let r = est.variances();
             out.ratio = [r.range() / truth.range(), r.azimuth() / truth.azimuth()];
         }
     }
@@ -384,4 +430,107 @@ fn variational_estimator_ends_near_the_truth() {
     let spread = ends.iter().map(|m| m[0]).fold(f64::NEG_INFINITY, f64::max)
         - ends.iter().map(|m| m[0]).fold(f64::INFINITY, f64::min);
     assert!(spread < 0.05, "{spread}");
+}
+
+/// The evidence estimator with the post-fit read-out (h = ln 1.2, ρ = 1, 5 % anchor clip,
+/// settle 15), 100 runs. The goal: within 3 % of the truth (mean over runs) from all
+/// five starts, range and azimuth separately. Our 100-run numbers (seeds 1000+i): range
+/// 0.991 / 0.975 / 0.973 / 0.975 / 0.977, azimuth 1.029 / 1.026 / 1.021 / 1.022 / 1.025
+/// (per-run sd 0.11, standard error of a mean 0.011). The tolerance is the goal itself, so
+/// this test holds with little margin (azimuth from 0.2: 1.029). Settle = 5 gave range
+/// 0.95 (NOT within 3 %), see docs/papers/000-gimpo.md. Also: the spread over the starts
+/// 0.5 … 2 is below 1 % (common random numbers), i.e. the start is forgotten, which the
+/// paper's rule does not do (1.01 … 1.07).
+#[test]
+fn evidence_estimator_ends_within_three_percent_from_every_start() {
+    let kind = Estimator::Evidence {
+        spacing: 0.2,
+        rho: 1.0,
+        clip: Some(0.05),
+        settle: Some(15),
+    };
+    let mut ends = Vec::new();
+    for f in STARTS {
+        let (mean, _, _) = campaign(kind, f, 100);
+        println!(
+            "evidence from {f}: range {:.4} azimuth {:.4}",
+            mean[0], mean[1]
+        );
+        assert!((mean[0] - 1.0).abs() < 0.03, "range from {f}: {}", mean[0]);
+        assert!(
+            (mean[1] - 1.0).abs() < 0.03,
+            "azimuth from {f}: {}",
+            mean[1]
+        );
+        ends.push(mean);
+    }
+    for c in 0..2 {
+        let v: Vec<f64> = ends[1..].iter().map(|m| m[c]).collect();
+        let spread = v.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+            - v.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(
+            spread < 0.01,
+            "axis {c}: spread {spread} over starts 0.5 … 2"
+        );
+    }
+}
+
+/// Exploration of the evidence estimator's parameters (prints; run with --release).
+#[test]
+#[ignore = "exploration: prints the 100-run table for a set of parameters"]
+fn evidence_explore() {
+    let spacing: f64 = std::env::var("EV_SPACING").map_or(0.2, |v| v.parse().unwrap());
+    let rho: f64 = std::env::var("EV_RHO").map_or(1.0, |v| v.parse().unwrap());
+    let clip: f64 = std::env::var("EV_CLIP").map_or(0.05, |v| v.parse().unwrap());
+    let runs: u64 = std::env::var("EV_RUNS").map_or(100, |v| v.parse().unwrap());
+    let settle: Option<usize> = std::env::var("EV_POST").ok().map(|v| v.parse().unwrap());
+    let clip = (clip > 0.0).then_some(clip);
+    let true_r = campaign(Estimator::Fixed, 1.0, runs).2;
+    for f in STARTS {
+        let kind = Estimator::Evidence {
+            spacing,
+            rho,
+            clip,
+            settle,
+        };
+        let (mean, sd, rms) = campaign(kind, f, runs);
+        println!(
+            "h {spacing} rho {rho} clip {clip:?} start {f}: range {:.4} az {:.4} sd_r {sd:.3} rms {:+.2} %",
+            mean[0],
+            mean[1],
+            100.0 * (rms / true_r - 1.0)
+        );
+    }
+}
+
+/// A loop of IMM and multi-IMM steps for `valgrind --tool=callgrind` (no assertion: a
+/// profiling driver, see docs/papers/000-gimpo.md "Cost").
+#[test]
+#[ignore = "profiling driver"]
+fn profile_steps() {
+    let imm = paper_imm();
+    let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
+    let times = beam_times();
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let pl = plots(&times, SIGMA_R, sigma_t(), &mut rng);
+    let var = NoiseVariances::from_sigmas(SIGMA_R, sigma_t()).unwrap();
+    let m = MultiImm::new(
+        paper_imm(),
+        NoiseGrid::<5>::common(0.1).unwrap(),
+        Some(0.05),
+    )
+    .unwrap();
+    let mut n = 0.0;
+    for _ in 0..10 {
+        let mut est = two_point(&pl[0], &pl[1], times[1] - times[0], &var);
+        let mut mest = MultiImmEstimate::new(est, var);
+        for k in 2..times.len() {
+            let dt = times[k] - times[k - 1];
+            let (me, z) = conv.convert(&pl[k], &var).unwrap();
+            est = imm.step(&est, dt, &me, &z).unwrap().estimate;
+            mest = m.step(&mest, dt, &pl[k], &conv).unwrap().estimate;
+            n += est.combined().unwrap().mean()[0] + mest.combined().unwrap().mean()[0];
+        }
+    }
+    println!("{n}");
 }

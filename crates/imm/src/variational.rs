@@ -183,7 +183,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> VariationalNoiseImm<F
 }
 
 /// Wraps an angle to `(−π, π]`.
-fn wrap_angle(a: f64) -> f64 {
+pub(crate) fn wrap_angle(a: f64) -> f64 {
     let two_pi = 2.0 * std::f64::consts::PI;
     let w = a - two_pi * (a / two_pi).round();
     if w <= -std::f64::consts::PI {
