@@ -98,6 +98,36 @@ pub(crate) fn gnn(rows: usize, cols: usize, edges: &[Edge], miss: &[f64]) -> Vec
     out
 }
 
+/// Groups edges `(row, col)` into the connected components of the bipartite graph:
+/// each group lists edge indices.
+pub(crate) fn clusters(rows: usize, cols: usize, edges: &[(usize, usize)]) -> Vec<Vec<usize>> {
+    let mut parent: Vec<usize> = (0..rows + cols).collect();
+    for &(r, c) in edges {
+        let (a, b) = (find(&mut parent, r), find(&mut parent, rows + c));
+        if a != b {
+            parent[a] = b;
+        }
+    }
+    let mut by_root: Vec<(usize, usize)> = edges
+        .iter()
+        .enumerate()
+        .map(|(k, &(r, _))| (find(&mut parent, r), k))
+        .collect();
+    by_root.sort_unstable();
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    let mut last = usize::MAX;
+    for (root, k) in by_root {
+        if root != last {
+            out.push(Vec::new());
+            last = root;
+        }
+        if let Some(g) = out.last_mut() {
+            g.push(k);
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

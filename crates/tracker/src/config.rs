@@ -41,6 +41,29 @@ pub struct TrackerConfig {
     pub score: Option<ScoreConfig>,
     /// The estimator each track runs. Default [`EstimatorConfig::Kf`].
     pub estimator: EstimatorConfig,
+    /// How confirmed tracks use the plots. Default [`AssociationConfig::Gnn`].
+    pub association: AssociationConfig,
+}
+
+/// Association of plots to confirmed tracks (tentative tracks always use GNN).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum AssociationConfig {
+    /// Global nearest neighbour: optimal 2-D assignment per cluster.
+    Gnn,
+    /// Joint probabilistic data association per cluster of tracks sharing plots:
+    /// exact events up to `max_exact_events` per cluster, Fitzgerald's cheap JPDA beyond
+    /// (see the crate docs). Every plot in a confirmed track's gate is spent (no track is
+    /// initiated from it). A track is updated with the moment-matched mixture of its
+    /// per-plot Kalman updates and its prediction, weighted by the marginals. Not
+    /// available with the IMM estimator yet.
+    Jpda {
+        /// Detection probability `P_D` in (0, 1].
+        p_detection: f64,
+        /// Clutter density `λ` (false plots per m² per scan), > 0.
+        clutter_density: f64,
+        /// Largest number of joint events enumerated exactly for one cluster (≥ 1).
+        max_exact_events: usize,
+    },
 }
 
 /// The per-track estimator.
@@ -163,6 +186,7 @@ impl TrackerConfig {
             grid_cell: 2000.0,
             score: None,
             estimator: EstimatorConfig::Kf,
+            association: AssociationConfig::Gnn,
         }
     }
 
@@ -236,6 +260,33 @@ impl TrackerConfig {
             }
             if !(p_stay.is_finite() && p_stay > 0.0 && p_stay < 1.0) {
                 return bad("estimator.p_stay", p_stay, "must lie in (0, 1)");
+            }
+        }
+        if let AssociationConfig::Jpda {
+            p_detection,
+            clutter_density,
+            max_exact_events,
+        } = self.association
+        {
+            if !(p_detection.is_finite() && p_detection > 0.0 && p_detection <= 1.0) {
+                return bad("association.p_detection", p_detection, "must lie in (0, 1]");
+            }
+            if !(clutter_density.is_finite() && clutter_density > 0.0) {
+                return bad(
+                    "association.clutter_density",
+                    clutter_density,
+                    "must be finite and positive",
+                );
+            }
+            if max_exact_events == 0 {
+                return bad("association.max_exact_events", 0.0, "must be at least 1");
+            }
+            if self.estimator != EstimatorConfig::Kf {
+                return bad(
+                    "association",
+                    0.0,
+                    "JPDA with the IMM estimator is not built yet",
+                );
             }
         }
         Ok(())

@@ -20,6 +20,9 @@
 //!    (clusters) are solved one by one by an optimal 2-D assignment minimising the sum
 //!    of normalised distances `νᵀ S⁻¹ ν`, a track staying unassigned at cost `γ`.
 //!    Confirmed tracks are served first, tentative ones take the plots left.
+//!    **JPDA** ([`AssociationConfig::Jpda`]) may replace GNN for confirmed tracks: per
+//!    cluster, exact joint events when there are at most `max_exact_events`, Fitzgerald's
+//!    cheap JPDA (`β_tj = G_tj / (S_t + S^j − G_tj + B)`) beyond.
 //!    The solver is the [`lsap`] crate: SciPy's `linear_sum_assignment` algorithm
 //!    (Crouse's shortest augmenting path form of Jonker–Volgenant) on `f64` costs and
 //!    rectangular matrices. `pathfinding::kuhn_munkres`, the best-known Rust solver,
@@ -64,7 +67,7 @@
 //!
 //! # Not yet here
 //! Polar plots go in after conversion (`argus_sensors::convert_polar`) by the caller;
-//! EKF and coordinated-turn IMM estimators per track, and JPDA, are not built yet.
+//! EKF and coordinated-turn IMM estimators per track, and IMM-JPDA, are not built yet.
 //!
 //! # Example
 //! ```
@@ -90,10 +93,11 @@ mod assign;
 mod config;
 mod error;
 mod grid;
+mod jpda;
 mod track;
 mod tracker;
 
-pub use config::{EstimatorConfig, ScoreConfig, TrackerConfig};
+pub use config::{AssociationConfig, EstimatorConfig, ScoreConfig, TrackerConfig};
 pub use error::TrackerError;
 pub use track::{DeletionReason, SensorId, Track, TrackId, TrackStatus};
 pub use tracker::{Plot, ScanReport, Tracker};

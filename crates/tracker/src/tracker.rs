@@ -7,11 +7,12 @@ use argus_imm::{Imm, ImmEstimate, ImmPrediction, MarkovMatrix, moment_match};
 use argus_motion_models::Cv2D;
 use argus_sensors::CartesianPosition;
 
-use crate::assign::{Edge, gnn};
+use crate::assign::{Edge, clusters, gnn};
 use crate::grid::Grid;
+use crate::jpda::marginals;
 use crate::{
-    DeletionReason, EstimatorConfig, SensorId, Track, TrackId, TrackStatus, TrackerConfig,
-    TrackerError,
+    AssociationConfig, DeletionReason, EstimatorConfig, SensorId, Track, TrackId, TrackStatus,
+    TrackerConfig, TrackerError,
 };
 
 /// One Cartesian position plot `(x, y)` with its covariance (e.g. a converted polar
@@ -73,6 +74,9 @@ pub struct Tracker {
     assigned: Vec<Option<usize>>,
     used: Vec<bool>,
     edges: Vec<Edge>,
+    /// JPDA per track: (plot, β) pairs, and the score increment `ln(B + Σ G)`.
+    jpda: Vec<Vec<(usize, f64)>>,
+    jpda_dl: Vec<Option<f64>>,
 }
 
 impl Tracker {
@@ -128,6 +132,8 @@ impl Tracker {
             assigned: Vec::new(),
             used: Vec::new(),
             edges: Vec::new(),
+            jpda: Vec::new(),
+            jpda_dl: Vec::new(),
         })
     }
 
@@ -347,9 +353,21 @@ impl Tracker {
         // 2–3. Gate and assign, confirmed tracks first, then tentative ones.
         self.assigned.clear();
         self.assigned.resize(self.tracks.len(), None);
-        for status in [TrackStatus::Confirmed, TrackStatus::Tentative] {
-            self.associate(status, plots, r_max);
+        self.jpda.iter_mut().for_each(Vec::clear);
+        self.jpda.resize(self.tracks.len(), Vec::new());
+        self.jpda_dl.clear();
+        self.jpda_dl.resize(self.tracks.len(), None);
+        if let AssociationConfig::Jpda {
+            p_detection,
+            clutter_density,
+            max_exact_events,
+        } = self.config.association
+        {
+            self.associate_jpda(plots, r_max, p_detection, clutter_density, max_exact_events);
+        } else {
+            self.associate(TrackStatus::Confirmed, plots, r_max);
         }
+        self.associate(TrackStatus::Tentative, plots, r_max);
 
         // 4. Update, count, confirm, delete.
         for (k, track) in self.tracks.iter_mut().enumerate() {
@@ -363,6 +381,11 @@ impl Tracker {
                 (Some(imm), Some(ip)) => {
                     imm_step(imm, ip, hit.map(|j| (&self.models[j], &plots[j])))
                 }
+                _ if !self.jpda[k].is_empty() => (
+                    jpda_update(&self.filter, &pred, &self.jpda[k], &self.models, plots)
+                        .map(|g| (g, None)),
+                    None,
+                ),
                 _ => (
                     match hit {
                         Some(j) => self
@@ -387,9 +410,10 @@ impl Tracker {
             track.imm = imm_posterior;
             track.time = time;
             if let Some(sc) = &self.config.score {
-                track.score += match log_likelihood {
-                    Some(ll) => (sc.p_detection / sc.clutter_density).ln() + ll,
-                    None => (1.0 - sc.p_detection * self.gate.p_gate()).ln(),
+                track.score += match (self.jpda_dl[k], log_likelihood) {
+                    (Some(dl), _) => dl,
+                    (None, Some(ll)) => (sc.p_detection / sc.clutter_density).ln() + ll,
+                    (None, None) => (1.0 - sc.p_detection * self.gate.p_gate()).ln(),
                 };
                 track.peak_score = track.peak_score.max(track.score);
             }
@@ -463,6 +487,83 @@ impl Tracker {
                 self.assigned[rows[row]] = Some(j);
                 self.used[j] = true;
             }
+        }
+    }
+
+    /// JPDA for the confirmed tracks: gated pairs with likelihood ratios, clusters,
+    /// marginals; every gated plot is spent.
+    fn associate_jpda(
+        &mut self,
+        plots: &[Plot],
+        r_max: [f64; 2],
+        p_d: f64,
+        lambda: f64,
+        max_events: usize,
+    ) {
+        let gamma = self.gate.gamma();
+        let miss = 1.0 - p_d * self.gate.p_gate();
+        let mut pairs: Vec<(usize, usize, f64)> = Vec::new();
+        for (k, track) in self.tracks.iter().enumerate() {
+            if track.status != TrackStatus::Confirmed {
+                continue;
+            }
+            let Some(pred) = self.predicted[k].as_ref() else {
+                continue;
+            };
+            let p = pred.cov();
+            let centre = Vector::<2>::new(pred.mean()[0], pred.mean()[2]);
+            let half = [
+                (gamma * (p[(0, 0)] + r_max[0])).sqrt(),
+                (gamma * (p[(2, 2)] + r_max[1])).sqrt(),
+            ];
+            let (filter, models) = (&self.filter, &self.models);
+            self.grid.query(&centre, half, |j| {
+                let Ok(mp) = filter.predict_measurement(pred, &models[j]) else {
+                    return;
+                };
+                let Ok(innov) = mp.innovation(&models[j], &plots[j].position) else {
+                    return;
+                };
+                let g = p_d * innov.log_likelihood.exp() / lambda;
+                if innov.nis <= gamma && g.is_finite() {
+                    pairs.push((k, j, g));
+                }
+            });
+        }
+        let simple: Vec<(usize, usize)> = pairs.iter().map(|&(k, j, _)| (k, j)).collect();
+        for group in clusters(self.tracks.len(), plots.len(), &simple) {
+            let mut rows: Vec<usize> = group.iter().map(|&e| pairs[e].0).collect();
+            let mut cols: Vec<usize> = group.iter().map(|&e| pairs[e].1).collect();
+            rows.sort_unstable();
+            rows.dedup();
+            cols.sort_unstable();
+            cols.dedup();
+            let local: Vec<(usize, usize, f64)> = group
+                .iter()
+                .map(|&e| {
+                    let (k, j, g) = pairs[e];
+                    (
+                        rows.binary_search(&k).unwrap_or(0),
+                        cols.binary_search(&j).unwrap_or(0),
+                        g,
+                    )
+                })
+                .collect();
+            let (beta, _) = marginals(rows.len(), cols.len(), &local, miss, max_events);
+            for (&e, b) in group.iter().zip(beta) {
+                let (k, j, _) = pairs[e];
+                self.jpda[k].push((j, b));
+                self.used[j] = true;
+            }
+        }
+        for (k, w) in self.jpda.iter().enumerate() {
+            if w.is_empty() {
+                continue;
+            }
+            let sum_g: f64 = pairs.iter().filter(|p| p.0 == k).map(|p| p.2).sum();
+            self.jpda_dl[k] = Some((miss + sum_g).ln());
+            // A hit for track management: the plot of largest weight.
+            self.assigned[k] = w.iter().max_by(|a, b| a.1.total_cmp(&b.1)).map(|&(j, _)| j);
         }
     }
 
@@ -574,6 +675,39 @@ impl Tracker {
             }
         }
     }
+}
+
+/// The JPDA (PDA) update: the moment-matched mixture of the prediction (weight
+/// `β₀ = 1 − Σ β_j`) and the Kalman update with each plot (weight `β_j`), which is the
+/// standard PDA update when all plots share one `R` (Bar-Shalom & Tse 1975).
+fn jpda_update(
+    filter: &Kf<Cv2D>,
+    pred: &Gaussian<4>,
+    weights: &[(usize, f64)],
+    models: &[CartesianPosition<4, 2>],
+    plots: &[Plot],
+) -> Option<Gaussian<4>> {
+    let b0 = (1.0 - weights.iter().map(|w| w.1).sum::<f64>()).max(0.0);
+    let mut parts: Vec<(f64, Gaussian<4>)> = Vec::with_capacity(weights.len() + 1);
+    parts.push((b0, *pred));
+    for &(j, b) in weights {
+        let (post, _) = filter.update(pred, &models[j], &plots[j].position).ok()?;
+        parts.push((b, post));
+    }
+    let total: f64 = parts.iter().map(|p| p.0).sum();
+    if !(total.is_finite() && total > 0.0) {
+        return None;
+    }
+    let mut mean = Vector::<4>::zeros();
+    for (w, g) in &parts {
+        mean += g.mean() * (*w / total);
+    }
+    let mut cov = Matrix::<4, 4>::zeros();
+    for (w, g) in &parts {
+        let d = g.mean() - mean;
+        cov += (g.cov() + d * d.transpose()) * (*w / total);
+    }
+    Gaussian::from_symmetrized(mean, &cov).ok()
 }
 
 /// One IMM update (or coast through a miss): the moment-matched posterior with the
