@@ -1,7 +1,8 @@
 //! A validated Gaussian density with stack-allocated mean and covariance.
 
 use crate::linalg::{
-    SYMMETRY_TOL, asymmetry, check_finite_matrix, check_finite_vector, symmetrize,
+    SYMMETRY_TOL, all_finite, asymmetry, check_finite_matrix, check_finite_vector,
+    is_positive_definite, symmetrize,
 };
 use crate::{MathError, Matrix, SpdFactor, Vector};
 
@@ -23,6 +24,7 @@ impl<const N: usize> Gaussian<N> {
     /// [`MathError::NonFinite`] for a NaN or infinite entry, [`MathError::NotSymmetric`]
     /// when `cov` is asymmetric beyond a relative 1e-9, [`MathError::NotPositiveDefinite`]
     /// when its Cholesky factorisation fails.
+    #[inline]
     pub fn new(mean: Vector<N>, cov: Matrix<N, N>) -> Result<Self, MathError> {
         check_finite_vector(&mean, "mean")?;
         check_finite_matrix(&cov, "covariance")?;
@@ -34,7 +36,9 @@ impl<const N: usize> Gaussian<N> {
             });
         }
         let cov = symmetrize(&cov);
-        SpdFactor::new_symmetric(&cov, "covariance")?;
+        if !is_positive_definite(&cov) {
+            return Err(MathError::NotPositiveDefinite { what: "covariance" });
+        }
         Ok(Self { mean, cov })
     }
 
@@ -43,10 +47,18 @@ impl<const N: usize> Gaussian<N> {
     ///
     /// # Errors
     /// [`MathError::NonFinite`] or [`MathError::NotPositiveDefinite`].
+    #[inline]
     pub fn from_symmetrized(mean: Vector<N>, cov: &Matrix<N, N>) -> Result<Self, MathError> {
         check_finite_vector(&mean, "mean")?;
         let cov = symmetrize(cov);
-        SpdFactor::new_symmetric(&cov, "covariance")?;
+        // The LDLᵀ pivot test fails on non-finite entries too; only then is the cause named.
+        if !is_positive_definite(&cov) {
+            return Err(if all_finite(cov.as_slice()) {
+                MathError::NotPositiveDefinite { what: "covariance" }
+            } else {
+                MathError::NonFinite { what: "covariance" }
+            });
+        }
         Ok(Self { mean, cov })
     }
 

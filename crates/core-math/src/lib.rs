@@ -20,6 +20,7 @@ mod chi2;
 pub mod dynamic;
 mod error;
 mod gaussian;
+pub mod kernels;
 mod linalg;
 
 pub use chi2::{
@@ -28,7 +29,8 @@ pub use chi2::{
 pub use error::MathError;
 pub use gaussian::Gaussian;
 pub use linalg::{
-    SpdFactor, check_finite_matrix, check_finite_vector, joseph_update, log_likelihood, symmetrize,
+    SpdFactor, check_finite_matrix, check_finite_vector, is_positive_definite, joseph_update,
+    log_likelihood, symmetrize,
 };
 
 /// Re-export of the faer version used for run-time-sized algebra.

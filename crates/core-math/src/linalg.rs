@@ -11,6 +11,7 @@ pub(crate) const SYMMETRY_TOL: f64 = 1e-9;
 ///
 /// # Errors
 /// [`MathError::NonFinite`] naming `what`.
+#[inline]
 pub fn check_finite_vector<const N: usize>(
     v: &Vector<N>,
     what: &'static str,
@@ -26,6 +27,7 @@ pub fn check_finite_vector<const N: usize>(
 ///
 /// # Errors
 /// [`MathError::NonFinite`] naming `what`.
+#[inline]
 pub fn check_finite_matrix<const R: usize, const C: usize>(
     m: &Matrix<R, C>,
     what: &'static str,
@@ -47,6 +49,7 @@ pub(crate) fn all_finite(values: &[f64]) -> bool {
 
 /// Returns `(A + Aᵀ) / 2`.
 #[must_use]
+#[inline]
 pub fn symmetrize<const N: usize>(a: &Matrix<N, N>) -> Matrix<N, N> {
     (a + a.transpose()) * 0.5
 }
@@ -58,6 +61,41 @@ pub(crate) fn asymmetry<const N: usize>(a: &Matrix<N, N>) -> f64 {
         return 0.0;
     }
     (a - a.transpose()).amax() / scale
+}
+
+/// Whether the symmetric matrix `a` is positive definite, reading its lower triangle.
+///
+/// The test runs the `LDLᵀ` factorisation (no square roots, nothing kept) and checks that
+/// every pivot `dⱼ` is positive and finite, which holds exactly when `a` is positive
+/// definite (Golub & Van Loan 2013, §4.2). A NaN or ±∞ anywhere in the lower triangle
+/// reaches a later pivot, so the test also fails on non-finite input. It is the cheap
+/// check for a covariance that is stored but not solved with (a filter's output);
+/// use [`SpdFactor`] when the factor is needed.
+#[must_use]
+#[inline]
+#[expect(
+    clippy::needless_range_loop,
+    reason = "the elimination reads column j while it updates column c of the same array"
+)]
+pub fn is_positive_definite<const N: usize>(a: &Matrix<N, N>) -> bool {
+    // Symmetric Gaussian elimination on a copy of the lower triangle (column-major
+    // storage: `m[j][i]` is entry (i, j)); the pivots are the `dⱼ` of `LDLᵀ`.
+    let mut m = a.data.0;
+    for j in 0..N {
+        let d = m[j][j];
+        let pivot_ok = d > 0.0 && d.is_finite();
+        if !pivot_ok {
+            return false;
+        }
+        let inv = 1.0 / d;
+        for c in j + 1..N {
+            let f = m[j][c] * inv;
+            for r in c..N {
+                m[c][r] -= f * m[j][r];
+            }
+        }
+    }
+    true
 }
 
 /// The Cholesky factor `A = L Lᵀ` of a symmetric positive-definite matrix, with
@@ -93,6 +131,7 @@ impl<const N: usize> SpdFactor<N> {
     ///
     /// # Errors
     /// [`MathError::NonFinite`] or [`MathError::NotPositiveDefinite`], naming `what`.
+    #[inline]
     pub fn new_symmetric(a: &Matrix<N, N>, what: &'static str) -> Result<Self, MathError> {
         // Fast path: factor first; a NaN or ∞ in `a` makes the factorisation fail or
         // leaves a non-finite entry in the factor, and only then is `a` examined to
@@ -126,6 +165,7 @@ impl<const N: usize> SpdFactor<N> {
 
     /// Solves `A X = B` for a matrix right-hand side.
     #[must_use]
+    #[inline]
     pub fn solve_matrix<const C: usize>(&self, b: &Matrix<N, C>) -> Matrix<N, C> {
         self.chol.solve(b)
     }
@@ -138,6 +178,7 @@ impl<const N: usize> SpdFactor<N> {
 
     /// `ln |A|`, computed as `2 Σ ln Lᵢᵢ` (no overflow or underflow of the determinant).
     #[must_use]
+    #[inline]
     pub fn log_det(&self) -> f64 {
         let l = self.chol.l_dirty();
         // One logarithm of the product of the pivots when that product is a normal
@@ -152,6 +193,7 @@ impl<const N: usize> SpdFactor<N> {
 
     /// The squared Mahalanobis distance `vᵀ A⁻¹ v`, as `‖L⁻¹ v‖²`.
     #[must_use]
+    #[inline]
     pub fn mahalanobis_sq(&self, v: &Vector<N>) -> f64 {
         let mut w = *v;
         self.chol.l_dirty().solve_lower_triangular_mut(&mut w);
@@ -187,14 +229,16 @@ pub fn log_likelihood<const M: usize>(r: &Vector<M>, s: &Matrix<M, M>) -> Result
 /// semi-definite under round-off.
 #[must_use]
 #[allow(non_snake_case)]
+#[inline]
 pub fn joseph_update<const N: usize, const M: usize>(
     P: &Matrix<N, N>,
     K: &Matrix<N, M>,
     H: &Matrix<M, N>,
     R: &Matrix<M, M>,
 ) -> Matrix<N, N> {
-    let a = Matrix::<N, N>::identity() - K * H;
-    symmetrize(&(a * P * a.transpose() + K * R * K.transpose()))
+    let a = Matrix::<N, N>::identity() - crate::kernels::mul(K, H);
+    // Both terms are exactly symmetric (`kernels::congruence` mirrors its lower triangle).
+    crate::kernels::congruence(&a, P) + crate::kernels::congruence(K, R)
 }
 
 #[cfg(test)]
@@ -276,7 +320,44 @@ mod tests {
         assert!((got - (-5000.0 - 0.5 * (2.0 * std::f64::consts::PI).ln())).abs() < 1e-9);
     }
 
+    #[test]
+    fn positive_definite_test_agrees_on_edge_cases() {
+        // Hand-checked: eigenvalues of [[1, 2], [2, 1]] are 3 and −1; of [[2, 1], [1, 2]] 3 and 1.
+        assert!(!is_positive_definite(&Matrix::<2, 2>::new(
+            1.0, 2.0, 2.0, 1.0
+        )));
+        assert!(is_positive_definite(&Matrix::<2, 2>::new(
+            2.0, 1.0, 1.0, 2.0
+        )));
+        // Semi-definite (a zero eigenvalue) is not definite.
+        assert!(!is_positive_definite(&Matrix::<2, 2>::new(
+            1.0, 1.0, 1.0, 1.0
+        )));
+        assert!(!is_positive_definite(&Matrix::<3, 3>::zeros()));
+        // Non-finite entries of the lower triangle, on or off the diagonal, fail.
+        for (i, j) in [(0, 0), (1, 0), (2, 0), (2, 1), (2, 2)] {
+            for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                let mut m = Matrix::<3, 3>::identity();
+                m[(i, j)] = bad;
+                m[(j, i)] = bad;
+                assert!(!is_positive_definite(&m), "({i}, {j}) = {bad}");
+            }
+        }
+    }
+
     proptest! {
+        #[test]
+        fn positive_definite_test_agrees_with_cholesky(seed in proptest::array::uniform9(-3.0f64..3.0), shift in -4.0f64..1.0) {
+            // A A^T + shift I is definite exactly when shift exceeds −λ_min(A Aᵀ); the
+            // test and nalgebra's Cholesky must agree away from the boundary.
+            let a = Matrix::<3, 3>::from_row_slice(&seed);
+            let m = symmetrize(&(a * a.transpose() + Matrix::<3, 3>::identity() * shift));
+            let lambda_min = m.symmetric_eigenvalues().min();
+            prop_assume!(lambda_min.abs() > 1e-9 * (1.0 + m.amax()));
+            prop_assert_eq!(is_positive_definite(&m), lambda_min > 0.0);
+            prop_assert_eq!(is_positive_definite(&m), Cholesky::new(m).is_some());
+        }
+
         #[test]
         fn solve_inverse_logdet_agree_with_nalgebra(seed in proptest::array::uniform9(-3.0f64..3.0)) {
             let a = spd3(seed);

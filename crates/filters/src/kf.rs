@@ -1,6 +1,6 @@
 //! The linear Kalman filter.
 
-use argus_core_math::Gaussian;
+use argus_core_math::{Gaussian, kernels};
 use argus_motion_models::LinearMotionModel;
 use argus_sensors::MeasurementModel;
 
@@ -101,7 +101,7 @@ impl<const N: usize, Mo: LinearMotionModel<N>> GaussianFilter<N> for Kf<Mo> {
         check_dt(dt)?;
         let F = self.model.transition(dt);
         let Q = self.model.process_noise(prior.mean(), dt);
-        linear_covariance_predict(F * prior.mean(), prior.cov(), &F, &Q)
+        linear_covariance_predict(kernels::mul(&F, prior.mean()), prior.cov(), &F, &Q)
     }
 
     /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.

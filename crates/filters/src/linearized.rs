@@ -1,7 +1,7 @@
 //! Helpers shared by the linearised filters (KF, EKF, second-order EKF, CD-EKF).
 
 use argus_core_math::{
-    Gaussian, MathError, Matrix, Vector, check_finite_matrix, check_finite_vector,
+    Gaussian, MathError, Matrix, Vector, check_finite_matrix, check_finite_vector, kernels,
 };
 use argus_sensors::MeasurementModel;
 
@@ -10,6 +10,7 @@ use crate::{CovarianceForm, FilterError, MeasurementPrediction};
 /// Builds an estimate from a filter stage's mean and covariance, naming the stage
 /// in the error (`what_mean`, `what_cov`) when a value is non-finite or the
 /// covariance is not positive definite.
+#[inline]
 pub(crate) fn checked_gaussian<const N: usize>(
     mean: Vector<N>,
     cov: &Matrix<N, N>,
@@ -17,7 +18,7 @@ pub(crate) fn checked_gaussian<const N: usize>(
     what_cov: &'static str,
 ) -> Result<Gaussian<N>, FilterError> {
     check_finite_vector(&mean, what_mean)?;
-    check_finite_matrix(cov, what_cov)?;
+    // `from_symmetrized` tells a non-finite covariance from a non-positive-definite one.
     Gaussian::from_symmetrized(mean, cov).map_err(|e| match e {
         MathError::NotPositiveDefinite { .. } => {
             FilterError::Math(MathError::NotPositiveDefinite { what: what_cov })
@@ -30,6 +31,7 @@ pub(crate) fn checked_gaussian<const N: usize>(
 /// The linearised prediction `x⁻ = f`, `P⁻ = F P Fᵀ + Q` from a propagated mean,
 /// the transition (or Jacobian) `F` and the process noise `Q`.
 #[allow(non_snake_case)]
+#[inline]
 pub(crate) fn linear_covariance_predict<const N: usize>(
     mean: Vector<N>,
     P: &Matrix<N, N>,
@@ -38,7 +40,7 @@ pub(crate) fn linear_covariance_predict<const N: usize>(
 ) -> Result<Gaussian<N>, FilterError> {
     check_finite_matrix(F, "transition matrix F")?;
     check_finite_matrix(Q, "process noise Q")?;
-    let cov = F * P * F.transpose() + Q;
+    let cov = kernels::congruence(F, P) + Q;
     checked_gaussian(mean, &cov, "predicted mean", "predicted covariance")
 }
 
@@ -46,6 +48,7 @@ pub(crate) fn linear_covariance_predict<const N: usize>(
 /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.
 /// For a linear measurement `h(x) = H x` this is the Kalman filter's.
 #[allow(non_snake_case)]
+#[inline]
 pub(crate) fn first_order_measurement<const N: usize, const M: usize, Me>(
     predicted: &Gaussian<N>,
     meas: &Me,
@@ -61,7 +64,7 @@ where
     let R = meas.noise(x);
     check_finite_matrix(&H, "measurement Jacobian H")?;
     check_finite_matrix(&R, "measurement noise R")?;
-    let PHt = P * H.transpose();
-    let S = H * PHt + R;
+    let PHt = kernels::mul_transpose(P, &H);
+    let S = kernels::mul(&H, &PHt) + R;
     MeasurementPrediction::new(z_pred, S, PHt, Some(H), R, form)
 }

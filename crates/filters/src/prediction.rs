@@ -2,7 +2,7 @@
 
 use argus_core_math::{
     Gaussian, Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector, joseph_update,
-    unit_ball_volume,
+    kernels, unit_ball_volume,
 };
 use argus_sensors::MeasurementModel;
 
@@ -52,6 +52,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     ///
     /// # Errors
     /// [`FilterError::Math`] when a value is non-finite or `S` is not positive definite.
+    #[inline]
     pub fn new(
         z_pred: Vector<M>,
         s: Matrix<M, M>,
@@ -130,12 +131,14 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
 
     /// The normalised innovation squared `νᵀ S⁻¹ ν` of a residual.
     #[must_use]
+    #[inline]
     pub fn nis(&self, residual: &Vector<M>) -> f64 {
         self.s_factor.mahalanobis_sq(residual)
     }
 
     /// `ln N(ν; 0, S)` from the squared distance `d² = νᵀS⁻¹ν`: `−½(d² + ln|S| + M ln 2π)`.
     #[must_use]
+    #[inline]
     pub fn log_likelihood_from_nis(&self, nis: f64) -> f64 {
         -0.5 * (nis + self.log_det_s + M as f64 * (2.0 * std::f64::consts::PI).ln())
     }
@@ -150,6 +153,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     ///
     /// # Errors
     /// [`FilterError::Math`] when `z` is not finite.
+    #[inline]
     pub fn innovation<Me: MeasurementModel<N, M>>(
         &self,
         meas: &Me,
@@ -171,25 +175,27 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     ///
     /// # Errors
     /// [`FilterError::Math`] when the posterior is non-finite or not positive definite.
+    #[inline]
     pub fn update(
         &self,
         predicted: &Gaussian<N>,
         residual: &Vector<M>,
     ) -> Result<Gaussian<N>, FilterError> {
         check_finite_vector(residual, "residual")?;
-        let mean = predicted.mean() + self.gain * residual;
+        let mean = predicted.mean() + kernels::mul(&self.gain, residual);
         let cov = self.posterior_cov(predicted.cov());
         crate::linearized::checked_gaussian(mean, &cov, "posterior mean", "posterior covariance")
     }
 
     /// The posterior covariance of an update with a plot (independent of the residual).
     #[must_use]
+    #[inline]
     pub fn posterior_cov(&self, prior_cov: &Matrix<N, N>) -> Matrix<N, N> {
         match (self.form, self.jacobian.as_ref()) {
             (CovarianceForm::Joseph, Some(h)) => {
                 joseph_update(prior_cov, &self.gain, h, &self.noise)
             }
-            _ => prior_cov - self.gain * self.s * self.gain.transpose(),
+            _ => prior_cov - kernels::congruence(&self.gain, &self.s),
         }
     }
 }

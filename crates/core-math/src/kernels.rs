@@ -1,0 +1,104 @@
+//! Small dense products written as plain loops over nalgebra's stack storage.
+//!
+//! nalgebra's `*` on fixed-size matrices goes through its general `gemm` and is not
+//! inlined for the 2–6-dimensional sizes of per-track filtering; these loops have
+//! compile-time bounds, so the compiler unrolls and vectorises them in place. They compute
+//! the same sums as `*` (the order of the terms may differ in the last bit). The per-step
+//! instruction counts are in `docs/BENCHMARKS.md` (measured with
+//! `crates/filters/examples/step_profile.rs` under callgrind).
+
+use crate::Matrix;
+
+/// `A B`.
+#[inline]
+#[must_use]
+pub fn mul<const R: usize, const K: usize, const C: usize>(
+    a: &Matrix<R, K>,
+    b: &Matrix<K, C>,
+) -> Matrix<R, C> {
+    let a = &a.data.0;
+    let b = &b.data.0;
+    let mut out = Matrix::<R, C>::zeros();
+    for (o, bj) in out.data.0.iter_mut().zip(b) {
+        // Column j of the product, accumulated in registers: Σ_k a_k b_kj.
+        let mut col = [0.0; R];
+        for (ak, &bkj) in a.iter().zip(bj) {
+            for (c, &aik) in col.iter_mut().zip(ak) {
+                *c += aik * bkj;
+            }
+        }
+        *o = col;
+    }
+    out
+}
+
+/// `A Bᵀ`.
+#[inline]
+#[must_use]
+pub fn mul_transpose<const R: usize, const K: usize, const C: usize>(
+    a: &Matrix<R, K>,
+    b: &Matrix<C, K>,
+) -> Matrix<R, C> {
+    let a = &a.data.0;
+    let b = &b.data.0;
+    let mut out = Matrix::<R, C>::zeros();
+    for (j, o) in out.data.0.iter_mut().enumerate() {
+        // Column j: Σ_k a_k b_jk.
+        let mut col = [0.0; R];
+        for (ak, bk) in a.iter().zip(b) {
+            let bjk = bk[j];
+            for (c, &aik) in col.iter_mut().zip(ak) {
+                *c += aik * bjk;
+            }
+        }
+        *o = col;
+    }
+    out
+}
+
+/// The congruence `A P Aᵀ` of a symmetric `P`, made exactly symmetric by mirroring the
+/// lower triangle of `(A P) Aᵀ`.
+#[inline]
+#[must_use]
+#[expect(
+    clippy::needless_range_loop,
+    reason = "the mirror reads and writes the same array at (i, j) and (j, i)"
+)]
+pub fn congruence<const R: usize, const N: usize>(
+    a: &Matrix<R, N>,
+    p: &Matrix<N, N>,
+) -> Matrix<R, R> {
+    let mut out = mul_transpose(&mul(a, p), a);
+    // Mirror the lower triangle so the result is exactly symmetric.
+    let o = &mut out.data.0;
+    for j in 0..R {
+        for i in j + 1..R {
+            o[i][j] = o[j][i];
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn products_equal_nalgebra(v in proptest::collection::vec(-10.0f64..10.0, 42)) {
+            // Reference: nalgebra's own products; tolerance: a few ulps of the largest term.
+            let a = Matrix::<3, 4>::from_column_slice(&v[0..12]);
+            let b = Matrix::<4, 2>::from_column_slice(&v[12..20]);
+            let c = Matrix::<2, 4>::from_column_slice(&v[20..28]);
+            let p = Matrix::<4, 4>::from_column_slice(&v[26..42]);
+            let p = p + p.transpose();
+            let tol = 1e-12 * 1e4;
+            prop_assert!((mul(&a, &b) - a * b).amax() < tol);
+            prop_assert!((mul_transpose(&a, &c) - a * c.transpose()).amax() < tol);
+            let g = congruence(&a, &p);
+            prop_assert!((g - a * p * a.transpose()).amax() < tol);
+            prop_assert_eq!(g, g.transpose());
+        }
+    }
+}
