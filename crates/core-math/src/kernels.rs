@@ -5,7 +5,7 @@
 //! compile-time bounds, so the compiler unrolls and vectorises them in place. They compute
 //! the same sums as `*` (the order of the terms may differ in the last bit). The per-step
 //! instruction counts are in `docs/BENCHMARKS.md` (measured with
-//! `crates/filters/examples/step_profile.rs` under callgrind).
+//! `crates/filters/examples/step_timing.rs <filter> <steps>` under callgrind).
 
 use crate::Matrix;
 

@@ -4,6 +4,11 @@
 //! include time spent waiting for a core.
 //!
 //! Run: `cargo run --release -p argus-filters --example step_timing`.
+//!
+//! With arguments `<filter> <steps>` (filter one of `kf-joseph`, `kf-standard`,
+//! `ekf-joseph`, `ekf-standard`, `ukf`) it only runs that many steps of one filter and
+//! prints a checksum, for instruction counting, which does not depend on the machine's
+//! load: `valgrind --tool=callgrind target/release/examples/step_timing kf-joseph 20000`.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::hint::black_box;
@@ -68,6 +73,34 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let z_pos = Vector::<2>::new(19_810.0, 10_095.0);
     let polar = Polar2D::cv([0.0, 0.0], RadarNoise::constant(30.0, 0.01, 0.0)?)?;
     let z_polar = polar.predict(&Vector::<4>::new(19_810.0, -100.0, 10_095.0, 50.0));
+    let mut args = std::env::args().skip(1);
+    if let Some(which) = args.next() {
+        let n: u32 = args.next().map_or(Ok(100_000), |s| s.parse())?;
+        let (e, zp, zq) = (&est, &z_pos, &z_polar);
+        let one = |which: &str| -> Result<Gaussian<4>, Box<dyn std::error::Error>> {
+            let (kj, ks) = (Kf::new(cv), Kf::with_form(cv, CovarianceForm::Standard));
+            let (ej, es) = (Ekf::new(cv), Ekf::with_form(cv, CovarianceForm::Standard));
+            Ok(match which {
+                "kf-joseph" => step(&kj, black_box(e), &pos, black_box(zp))?,
+                "kf-standard" => step(&ks, black_box(e), &pos, black_box(zp))?,
+                "ekf-joseph" => step(&ej, black_box(e), &polar, black_box(zq))?,
+                "ekf-standard" => step(&es, black_box(e), &polar, black_box(zq))?,
+                "ukf" => step(
+                    &Ukf::new(cv, UtParams::default())?,
+                    black_box(e),
+                    &polar,
+                    zq,
+                )?,
+                other => return Err(format!("unknown filter {other}").into()),
+            })
+        };
+        let mut sum = 0.0;
+        for _ in 0..n {
+            sum += one(&which)?.mean()[0];
+        }
+        println!("{which}: {n} steps, checksum {sum:.6e}");
+        return Ok(());
+    }
     for form in [CovarianceForm::Joseph, CovarianceForm::Standard] {
         let kf = Kf::with_form(cv, form);
         let ekf = Ekf::with_form(cv, form);
