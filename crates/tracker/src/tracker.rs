@@ -556,12 +556,15 @@ impl Tracker {
                 self.used[j] = true;
             }
         }
+        let mut sum_g = vec![0.0; self.tracks.len()];
+        for &(k, _, g) in &pairs {
+            sum_g[k] += g;
+        }
         for (k, w) in self.jpda.iter().enumerate() {
             if w.is_empty() {
                 continue;
             }
-            let sum_g: f64 = pairs.iter().filter(|p| p.0 == k).map(|p| p.2).sum();
-            self.jpda_dl[k] = Some((miss + sum_g).ln());
+            self.jpda_dl[k] = Some((miss + sum_g[k]).ln());
             // A hit for track management: the plot of largest weight.
             self.assigned[k] = w.iter().max_by(|a, b| a.1.total_cmp(&b.1)).map(|&(j, _)| j);
         }
