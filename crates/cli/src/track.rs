@@ -10,11 +10,16 @@ use crate::error::CliError;
 use argus_filters::{two_point_cv2, two_point_cv3};
 
 use crate::estimator::{
-    cv_ekf, cv_kf, cv3_ekf, cv3_kf, polar, position, position3, spherical, step, unbiased,
-    unbiased3,
+    ImmSpec, MAX_MODELS, MultiSpec, build_imm, cv_ekf, cv_kf, cv3_ekf, cv3_kf,
+    initial_probabilities, polar, position, position3, spherical, step, unbiased, unbiased3,
 };
 use crate::output::write_atomic;
 use crate::plotfile::{self, FilePlot, FileValue};
+use argus_imm::{
+    ImmEstimate, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PROBABILITY_SUM_TOL,
+    PolarPlot, UnbiasedConversion,
+};
+use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 
 /// The TOML configuration.
 #[derive(Debug, Deserialize)]
@@ -64,8 +69,10 @@ enum EstimatorKind {
     KfConverted,
     /// EKF on polar plots.
     Ekf,
-    /// IMM: validated here; runs once `argus-imm` is wired in.
+    /// IMM of CV / fixed-rate CT Kalman filters on converted plots (seed 000).
     Imm,
+    /// The multi-IMM measurement-noise estimator of seed 000 eqs (8)–(14) around that IMM.
+    MultiImm,
 }
 
 /// The `[estimator]` table as written (flat, so that every value keeps its position in
@@ -77,6 +84,11 @@ struct EstimatorConfig {
     sigma_a: Option<Spanned<f64>>,
     models: Option<Vec<ModelConfig>>,
     markov: Option<Spanned<Vec<Vec<f64>>>>,
+    initial: Option<Spanned<Vec<f64>>>,
+    n: Option<Spanned<i64>>,
+    p: Option<Spanned<f64>>,
+    clip: Option<Spanned<f64>>,
+    per_axis: Option<bool>,
 }
 
 fn line_of(text: &str, offset: usize) -> u64 {
@@ -133,12 +145,15 @@ fn check_markov(
     Ok(())
 }
 
-/// A validated estimator: its kind and the CV model's white-acceleration σ (m/s²). The
-/// filter is built for the plot file's dimension (2-D or 3-D CV).
-#[derive(Debug, Clone, Copy)]
+/// A validated estimator: its kind and the CV model's white-acceleration σ (m/s²), or the
+/// IMM (and multi-IMM) description. The KF and EKF are built for the plot file's dimension
+/// (2-D or 3-D CV); the IMMs are 2-D.
+#[derive(Debug, Clone)]
 enum Estimator {
     KfConverted(f64),
     Ekf(f64),
+    Imm(ImmSpec),
+    MultiImm(ImmSpec, MultiSpec),
 }
 
 /// A validated sensor.
@@ -151,6 +166,157 @@ struct Sensor {
     polar: Option<(f64, f64)>,
     /// Elevation σ (rad).
     sigma_elevation: Option<f64>,
+}
+
+/// Validates the IMM keys (`models`, `markov`, `initial`) and builds the motion models.
+fn imm_spec(path: &Path, text: &str, e: &EstimatorConfig) -> Result<ImmSpec, CliError> {
+    let missing = |key: &str| {
+        CliError::input(
+            path,
+            None,
+            Some(key),
+            format!("required by estimator kind {:?}", e.kind),
+        )
+    };
+    let models = e.models.as_ref().ok_or_else(|| missing("models"))?;
+    if models.is_empty() || models.len() > MAX_MODELS {
+        return Err(CliError::input(
+            path,
+            None,
+            Some("models"),
+            format!("1 to {MAX_MODELS} models, not {}", models.len()),
+        ));
+    }
+    let mut built = Vec::with_capacity(models.len());
+    for m in models {
+        let sa = non_negative(path, text, "sigma_a", &m.sigma_a)?;
+        let model = match (m.kind, &m.rate_deg) {
+            (ModelKind::Ct, Some(w)) => {
+                let rate = *w.get_ref();
+                if !(rate.is_finite() && rate != 0.0) {
+                    return Err(CliError::input(
+                        path,
+                        Some(line_of(text, w.span().start)),
+                        Some("rate_deg"),
+                        format!(
+                            "{rate} must be finite and non-zero (a zero-rate turn is kind = \"cv\")"
+                        ),
+                    ));
+                }
+                PlanarModel::from(CoordinatedTurn::from_degrees_per_second(rate, sa)?)
+            }
+            (ModelKind::Ct, None) => return Err(missing("rate_deg")),
+            (ModelKind::Cv, Some(w)) => {
+                return Err(CliError::input(
+                    path,
+                    Some(line_of(text, w.span().start)),
+                    Some("rate_deg"),
+                    "a CV model has no turn rate",
+                ));
+            }
+            (ModelKind::Cv, None) => PlanarModel::from(Cv2D::discrete(sa)?),
+        };
+        built.push(model);
+    }
+    let n = built.len();
+    let markov = e.markov.as_ref().ok_or_else(|| missing("markov"))?;
+    check_markov(path, text, markov, n)?;
+    let initial = match &e.initial {
+        None => vec![1.0 / n as f64; n],
+        Some(v) => {
+            let mu = v.get_ref();
+            let sum: f64 = mu.iter().sum();
+            if mu.len() != n
+                || mu.iter().any(|p| !(0.0..=1.0).contains(p))
+                || (sum - 1.0).abs() > PROBABILITY_SUM_TOL
+            {
+                return Err(CliError::input(
+                    path,
+                    Some(line_of(text, v.span().start)),
+                    Some("initial"),
+                    format!(
+                        "needs {n} probabilities (one per model) in [0, 1] summing to 1 (sum = {sum})"
+                    ),
+                ));
+            }
+            mu.clone()
+        }
+    };
+    Ok(ImmSpec {
+        models: built,
+        markov: markov.get_ref().clone(),
+        initial,
+    })
+}
+
+/// Validates the multi-IMM keys `n`, `p`, `clip`, `per_axis` (defaults: the paper's 5,
+/// 0.1, 0.05, false).
+fn multi_spec(path: &Path, text: &str, e: &EstimatorConfig) -> Result<MultiSpec, CliError> {
+    let per_axis = e.per_axis.unwrap_or(false);
+    let allowed: &[usize] = if per_axis { &[3, 5] } else { &[3, 5, 7, 9] };
+    let n = match &e.n {
+        None => 5,
+        Some(v) => {
+            let n = *v.get_ref();
+            match usize::try_from(n) {
+                Ok(n) if allowed.contains(&n) => n,
+                _ => {
+                    return Err(CliError::input(
+                        path,
+                        Some(line_of(text, v.span().start)),
+                        Some("n"),
+                        format!(
+                            "{n} hypotheses per axis: one of {allowed:?}{}",
+                            if per_axis {
+                                " with per_axis = true"
+                            } else {
+                                ""
+                            }
+                        ),
+                    ));
+                }
+            }
+        }
+    };
+    let p = match &e.p {
+        None => 0.1,
+        Some(v) => {
+            let p = *v.get_ref();
+            // The smallest factor 1 − (n − 1)/2 · p must stay positive (eq 14).
+            if !(p.is_finite() && p > 0.0 && p * (n as f64 - 1.0) / 2.0 < 1.0) {
+                return Err(CliError::input(
+                    path,
+                    Some(line_of(text, v.span().start)),
+                    Some("p"),
+                    format!(
+                        "{p}: the grid spacing must be positive and keep 1 − (n − 1)/2 · p > 0 (n = {n})"
+                    ),
+                ));
+            }
+            p
+        }
+    };
+    let clip = match &e.clip {
+        None => Some(0.05),
+        Some(v) => {
+            let c = *v.get_ref();
+            if !(c.is_finite() && (0.0..1.0).contains(&c)) {
+                return Err(CliError::input(
+                    path,
+                    Some(line_of(text, v.span().start)),
+                    Some("clip"),
+                    format!("{c} must be in [0, 1) (0: no clip)"),
+                ));
+            }
+            (c > 0.0).then_some(c)
+        }
+    };
+    Ok(MultiSpec {
+        n,
+        p,
+        clip,
+        per_axis,
+    })
 }
 
 fn load(path: &Path) -> Result<(Vec<Sensor>, Estimator), CliError> {
@@ -231,31 +397,9 @@ fn load(path: &Path) -> Result<(Vec<Sensor>, Estimator), CliError> {
             let sa = e.sigma_a.as_ref().ok_or_else(|| missing("sigma_a"))?;
             Estimator::Ekf(non_negative(path, &text, "sigma_a", sa)?)
         }
-        EstimatorKind::Imm => {
-            let models = e.models.as_ref().ok_or_else(|| missing("models"))?;
-            for m in models {
-                non_negative(path, &text, "sigma_a", &m.sigma_a)?;
-                match (m.kind, &m.rate_deg) {
-                    (ModelKind::Ct, Some(w)) if !w.get_ref().is_finite() => {
-                        return Err(CliError::input(
-                            path,
-                            Some(line_of(&text, w.span().start)),
-                            Some("rate_deg"),
-                            format!("{} must be finite", w.get_ref()),
-                        ));
-                    }
-                    (ModelKind::Ct, None) => return Err(missing("rate_deg")),
-                    _ => {}
-                }
-            }
-            let markov = e.markov.as_ref().ok_or_else(|| missing("markov"))?;
-            check_markov(path, &text, markov, models.len())?;
-            return Err(CliError::input(
-                path,
-                None,
-                Some("estimator.kind"),
-                "'imm' is a valid configuration but cannot run yet: it needs the argus-imm crate wired into `argus track` (a later issue)",
-            ));
+        EstimatorKind::Imm => Estimator::Imm(imm_spec(path, &text, e)?),
+        EstimatorKind::MultiImm => {
+            Estimator::MultiImm(imm_spec(path, &text, e)?, multi_spec(path, &text, e)?)
         }
     };
     Ok((sensors, est))
@@ -275,9 +419,9 @@ pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize,
         sensors: &sensors,
     };
     let (rows, n) = if plots.first().is_some_and(|p| p.value.dim() == 3) {
-        track_3d(&ctx, est, &plots)?
+        track_3d(&ctx, &est, &plots)?
     } else {
-        track_2d(&ctx, est, &plots)?
+        track_2d(&ctx, &est, &plots)?
     };
     write_atomic(out, rows.as_bytes())?;
     Ok(n)
@@ -427,10 +571,229 @@ fn wrong_dim(ctx: &Ctx<'_>, p: &FilePlot) -> CliError {
     )
 }
 
+/// Calls `$f::<R>(args…)` for the run-time mode count `R ∈ 1 … MAX_MODELS`.
+macro_rules! by_modes {
+    ($r:expr, $f:ident, $($arg:expr),*) => {
+        match $r {
+            1 => $f::<1>($($arg),*),
+            2 => $f::<2>($($arg),*),
+            3 => $f::<3>($($arg),*),
+            4 => $f::<4>($($arg),*),
+            5 => $f::<5>($($arg),*),
+            r => Err(CliError::Usage(format!("{r} IMM models: at most {MAX_MODELS}"))),
+        }
+    };
+}
+
+/// A converter of a 2-D plot to a global Cartesian position and its covariance.
+type Convert2<'a> = dyn Fn(&FilePlot) -> Result<(Vector<2>, Matrix<2, 2>), CliError> + 'a;
+
+/// The CSV header of an IMM track file: the state, its variances, `mu_1 … mu_R` and
+/// `extra` columns.
+fn imm_header(r: usize, extra: &[&str]) -> String {
+    let mut cols: Vec<String> = ["t", "track", "x", "vx", "y", "vy"]
+        .iter()
+        .map(|c| (*c).to_owned())
+        .collect();
+    cols.extend(["x", "vx", "y", "vy"].iter().map(|n| format!("var_{n}")));
+    cols.extend((1..=r).map(|j| format!("mu_{j}")));
+    cols.extend(extra.iter().map(|c| (*c).to_owned()));
+    let mut h = cols.join(",");
+    h.push('\n');
+    h
+}
+
+/// One IMM track row: time, track id 1, combined state, its variances, then `extra`.
+fn imm_row(rows: &mut String, t: f64, g: &Gaussian<4>, extra: &[f64]) {
+    use std::fmt::Write as _;
+    let _ = write!(rows, "{t},1");
+    for v in g.mean().iter() {
+        let _ = write!(rows, ",{v}");
+    }
+    for i in 0..4 {
+        let _ = write!(rows, ",{}", g.cov()[(i, i)]);
+    }
+    for v in extra {
+        let _ = write!(rows, ",{v}");
+    }
+    rows.push('\n');
+}
+
+/// The first two plots and the two-point start of an IMM track (every mode from the same
+/// Gaussian).
+fn imm_start<'p>(
+    ctx: &Ctx<'_>,
+    plots: &'p [FilePlot],
+    convert: &Convert2<'_>,
+) -> Result<(Gaussian<4>, &'p FilePlot, &'p [FilePlot]), CliError> {
+    let (Some(p1), Some(p2)) = (plots.first(), plots.get(1)) else {
+        return Err(CliError::input(
+            ctx.plots_path,
+            None,
+            None,
+            "at least two plots are needed to start a track",
+        ));
+    };
+    let (z1, r1) = convert(p1)?;
+    let (z2, r2) = convert(p2)?;
+    let g = two_point_cv2(&z1, &r1, &z2, &r2, p2.time - p1.time).map_err(|e| {
+        CliError::input(
+            ctx.plots_path,
+            Some(p2.line),
+            Some("t"),
+            format!("two-point initialisation: {e}"),
+        )
+    })?;
+    Ok((g, p2, plots.get(2..).unwrap_or(&[])))
+}
+
+fn imm_error(ctx: &Ctx<'_>, p: &FilePlot) -> impl Fn(argus_imm::ImmError) -> CliError {
+    let (path, line) = (ctx.plots_path.to_path_buf(), p.line);
+    move |e| CliError::input(&path, Some(line), None, format!("IMM update failed: {e}"))
+}
+
+/// An IMM with `R` modes over 2-D plots (polar plots converted with the unbiased conversion
+/// and the sensor's σ, Cartesian reports as given). Plots of the same instant are applied
+/// in turn without mixing or prediction.
+fn track_imm<const R: usize>(
+    ctx: &Ctx<'_>,
+    spec: &ImmSpec,
+    plots: &[FilePlot],
+    convert: &Convert2<'_>,
+) -> Result<(String, usize), CliError> {
+    let imm = build_imm::<R>(spec)?;
+    let (g, p2, rest) = imm_start(ctx, plots, convert)?;
+    let mut est = ImmEstimate::from_common(g, initial_probabilities::<R>(spec))?;
+    let mut rows = imm_header(R, &[]);
+    let mut t = p2.time;
+    imm_row(&mut rows, t, &est.combined()?, &est.mode_probabilities());
+    let mut n = 1;
+    for p in rest {
+        let (z, r) = convert(p)?;
+        let meas = position(r)?;
+        let dt = p.time - t;
+        let upd = if dt == 0.0 {
+            imm.update(&est.into_prediction(), &meas, &z)
+        } else {
+            imm.step(&est, dt, &meas, &z)
+        };
+        est = upd.map_err(imm_error(ctx, p))?.estimate;
+        t = p.time;
+        let c = est.combined().map_err(imm_error(ctx, p))?;
+        imm_row(&mut rows, t, &c, &est.mode_probabilities());
+        n += 1;
+    }
+    Ok((rows, n))
+}
+
+/// The multi-IMM around an IMM with `R` modes: picks the grid size from `multi`.
+fn track_multi<const R: usize>(
+    ctx: &Ctx<'_>,
+    spec: &ImmSpec,
+    multi: MultiSpec,
+    plots: &[FilePlot],
+    convert: &Convert2<'_>,
+) -> Result<(String, usize), CliError> {
+    let (p, c) = (multi.p, multi.clip);
+    match (multi.per_axis, multi.n) {
+        (false, 3) => track_multi_k::<R, 3>(ctx, spec, NoiseGrid::common(p)?, c, plots, convert),
+        (false, 5) => track_multi_k::<R, 5>(ctx, spec, NoiseGrid::common(p)?, c, plots, convert),
+        (false, 7) => track_multi_k::<R, 7>(ctx, spec, NoiseGrid::common(p)?, c, plots, convert),
+        (false, 9) => track_multi_k::<R, 9>(ctx, spec, NoiseGrid::common(p)?, c, plots, convert),
+        (true, 3) => {
+            track_multi_k::<R, 9>(ctx, spec, NoiseGrid::independent(p)?, c, plots, convert)
+        }
+        (true, 5) => {
+            track_multi_k::<R, 25>(ctx, spec, NoiseGrid::independent(p)?, c, plots, convert)
+        }
+        (_, n) => Err(CliError::Usage(format!(
+            "multi-IMM with n = {n} is not built"
+        ))),
+    }
+}
+
+/// The multi-IMM with `K` noise hypotheses over the polar plots of one sensor; the initial
+/// reference is the sensor's configured σ.
+fn track_multi_k<const R: usize, const K: usize>(
+    ctx: &Ctx<'_>,
+    spec: &ImmSpec,
+    grid: NoiseGrid<K>,
+    clip: Option<f64>,
+    plots: &[FilePlot],
+    convert: &Convert2<'_>,
+) -> Result<(String, usize), CliError> {
+    let multi = MultiImm::new(build_imm::<R>(spec)?, grid, clip)?;
+    let first = plots.first().ok_or_else(|| {
+        CliError::input(
+            ctx.plots_path,
+            None,
+            None,
+            "at least two plots are needed to start a track",
+        )
+    })?;
+    let sensor = ctx.sensor(first)?;
+    let (sr, sa) = ctx.polar_sigmas(sensor)?;
+    let not_polar = |p: &FilePlot, what: &str| {
+        CliError::input(
+            ctx.plots_path,
+            Some(p.line),
+            Some("sensor"),
+            format!("the multi-IMM estimates one polar radar's noise: {what}"),
+        )
+    };
+    let conv = UnbiasedConversion::<4>::new(0, 2)?.at([sensor.position[0], sensor.position[1]])?;
+    let reference = NoiseVariances::from_sigmas(sr, sa).map_err(|e| {
+        CliError::input(
+            ctx.config,
+            None,
+            Some("sigma_range"),
+            format!("sensor {}: {e}", sensor.id),
+        )
+    })?;
+    let (g, p2, rest) = imm_start(ctx, plots, convert)?;
+    let start = ImmEstimate::from_common(g, initial_probabilities::<R>(spec))?;
+    let mut est = MultiImmEstimate::<4, R, K>::new(start, reference);
+    let mut rows = imm_header(R, &["sigma_range", "sigma_azimuth_deg"]);
+    let sig = |v: &NoiseVariances| [v.range().sqrt(), v.azimuth().sqrt().to_degrees()];
+    let extra = |est: &MultiImmEstimate<4, R, K>| -> Vec<f64> {
+        let mut v = est.mode_probabilities().to_vec();
+        v.extend(sig(est.reference()));
+        v
+    };
+    let mut t = p2.time;
+    imm_row(&mut rows, t, &est.combined()?, &extra(&est));
+    let mut n = 1;
+    for p in plots.iter().take(2).chain(rest) {
+        if p.sensor != sensor.id {
+            return Err(not_polar(
+                p,
+                &format!("plot of sensor {} after sensor {}", p.sensor, sensor.id),
+            ));
+        }
+        let FileValue::Polar { range, azimuth } = p.value else {
+            return Err(not_polar(p, "a Cartesian report"));
+        };
+        if p.line <= p2.line {
+            continue;
+        }
+        let plot = PolarPlot::new(range, azimuth).map_err(imm_error(ctx, p))?;
+        let dt = p.time - t;
+        est = multi
+            .step(&est, dt, &plot, &conv)
+            .map_err(imm_error(ctx, p))?
+            .estimate;
+        t = p.time;
+        let c = est.combined().map_err(imm_error(ctx, p))?;
+        imm_row(&mut rows, t, &c, &extra(&est));
+        n += 1;
+    }
+    Ok((rows, n))
+}
+
 /// 2-D plots (polar or Cartesian) with a CV model on `[x, vx, y, vy]`.
 fn track_2d(
     ctx: &Ctx<'_>,
-    est: Estimator,
+    est: &Estimator,
     plots: &[FilePlot],
 ) -> Result<(String, usize), CliError> {
     let convert = |p: &FilePlot| -> Result<(Vector<2>, Matrix<2, 2>), CliError> {
@@ -450,7 +813,7 @@ fn track_2d(
             FileValue::Spherical { .. } | FileValue::Cartesian3 { .. } => Err(wrong_dim(ctx, p)),
         }
     };
-    match est {
+    match *est {
         Estimator::KfConverted(sa) => {
             let f = cv_kf(sa)?;
             track_loop(ctx, plots, convert, two_point_cv2, |x, dt, p| {
@@ -475,13 +838,27 @@ fn track_2d(
                 Ok(post.map_err(ctx.filter_error(p))?.0)
             })
         }
+        Estimator::Imm(ref spec) => {
+            by_modes!(spec.models.len(), track_imm, ctx, spec, plots, &convert)
+        }
+        Estimator::MultiImm(ref spec, multi) => {
+            by_modes!(
+                spec.models.len(),
+                track_multi,
+                ctx,
+                spec,
+                multi,
+                plots,
+                &convert
+            )
+        }
     }
 }
 
 /// 3-D plots (spherical or Cartesian) with a CV model on `[x, vx, y, vy, z, vz]`.
 fn track_3d(
     ctx: &Ctx<'_>,
-    est: Estimator,
+    est: &Estimator,
     plots: &[FilePlot],
 ) -> Result<(String, usize), CliError> {
     let convert = |p: &FilePlot| -> Result<(Vector<3>, Matrix<3, 3>), CliError> {
@@ -507,7 +884,16 @@ fn track_3d(
             FileValue::Polar { .. } | FileValue::Cartesian { .. } => Err(wrong_dim(ctx, p)),
         }
     };
-    match est {
+    match *est {
+        Estimator::Imm(_) | Estimator::MultiImm(..) => Err(CliError::input(
+            ctx.config,
+            None,
+            Some("estimator.kind"),
+            format!(
+                "the IMM estimators track 2-D plots ([x, vx, y, vy]); {} holds 3-D plots",
+                ctx.plots_path.display()
+            ),
+        )),
         Estimator::KfConverted(sa) => {
             let f = cv3_kf(sa)?;
             track_loop(ctx, plots, convert, two_point_cv3, |x, dt, p| {
