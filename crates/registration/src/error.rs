@@ -1,6 +1,7 @@
 //! The error type of `argus-registration`.
 
 use argus_core_math::MathError;
+use argus_sensors::SensorError;
 
 /// What went wrong in a registration step. A failed step leaves every estimate it was
 /// given unchanged.
@@ -10,6 +11,9 @@ pub enum RegistrationError {
     /// A numerical check failed (non-finite value, covariance not positive definite).
     #[error(transparent)]
     Math(#[from] MathError),
+    /// A sensor-model check failed (non-finite plot, range not positive).
+    #[error(transparent)]
+    Sensor(#[from] SensorError),
     /// A value that must be finite is NaN or infinite.
     #[error("{what} is not finite: {value}")]
     NonFinite {

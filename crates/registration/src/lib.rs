@@ -2,8 +2,9 @@
 //! with pseudo-measurements for asynchronous sensors, the EXX baseline (Lin,
 //! Bar-Shalom & Kirubarajan 2005) and compensation of the local tracks.
 //!
-//! - [`PolarSensor`], [`SensorBias`], [`ConvertedPlot`]: the biased polar radar and its
-//!   linearisation `z = H X + B C β + w` (eqs (1)–(6)) at a chosen [`Linearization`].
+//! - [`PolarSensor`], [`ConvertedPlot`]: the biased polar radar (an
+//!   [`argus_sensors::Polar2D`] with an [`argus_sensors::PolarBias`]) and its linearisation
+//!   `z = H X + B C β + w` (eqs (1)–(6)) at a chosen [`Linearization`].
 //! - [`BiasedLocalFilter`], [`BiasedTrack`]: the CV filter on biased plots carrying the
 //!   bias sensitivity `G`, so that `X̂ᵇ = X̂ + G β` (eqs (7)–(21)).
 //! - [`pseudo_measurement`]: the stacked pseudo bias measurement of one plot against the
@@ -52,6 +53,6 @@ pub use error::RegistrationError;
 pub use estimator::{Backend, BiasEstimator, PseudoMeasurement, STACK_MAX_SENSORS};
 pub use exx::{ExxCollector, exx_pseudo_measurement};
 pub use local::{BiasedLocalFilter, BiasedTrack, position_matrix};
-pub use polar::{ConvertedPlot, Linearization, PolarPlot, PolarSensor, SensorBias};
+pub use polar::{ConvertedPlot, Linearization, PolarPlot, PolarSensor};
 pub use pseudo::pseudo_measurement;
 pub use registrar::{Initiation, PlotOutcome, Registrar, RegistrarConfig};

@@ -3,49 +3,15 @@
 //! converted once to Cartesian with its noise `R` and bias Jacobian `B C`, evaluated
 //! at a chosen [`Linearization`] point.
 
-use argus_core_math::{Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector};
+use argus_core_math::{
+    Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector, symmetrize,
+};
+use argus_sensors::{
+    ConversionMethod, MeasurementModel, Polar2D, PolarBias, RadarNoise, Sigmas, bias_regressor,
+    convert_polar,
+};
 
 use crate::error::{RegistrationError, finite, positive};
-
-/// A sensor's bias `β = [b_r, b_θ, ε_r, ε_θ]`: range offset (m), azimuth offset (rad),
-/// range scale and azimuth scale (both dimensionless).
-///
-/// # References
-/// Seed 004 eq (1) and the text after eq (4).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SensorBias(Vector<4>);
-
-impl SensorBias {
-    /// A bias from its four components.
-    ///
-    /// # Errors
-    /// [`RegistrationError::NonFinite`] naming the component.
-    pub fn new(
-        range_offset: f64,
-        azimuth_offset: f64,
-        range_scale: f64,
-        azimuth_scale: f64,
-    ) -> Result<Self, RegistrationError> {
-        Ok(Self(Vector::<4>::new(
-            finite("range offset bias", range_offset)?,
-            finite("azimuth offset bias", azimuth_offset)?,
-            finite("range scale bias", range_scale)?,
-            finite("azimuth scale bias", azimuth_scale)?,
-        )))
-    }
-
-    /// No bias.
-    #[must_use]
-    pub fn zero() -> Self {
-        Self(Vector::<4>::zeros())
-    }
-
-    /// The vector `[b_r, b_θ, ε_r, ε_θ]`.
-    #[must_use]
-    pub fn vector(&self) -> &Vector<4> {
-        &self.0
-    }
-}
 
 /// A plot in the sensor's polar frame: range (m) and azimuth (rad, from +x
 /// counter-clockwise), relative to the sensor's position.
@@ -70,12 +36,14 @@ pub enum Linearization {
     AtPrediction,
 }
 
-/// A 2-D polar radar at a known position with white range and azimuth noise.
+/// A 2-D polar radar as registration uses it: an [`argus_sensors::Polar2D`] (position
+/// and noise model) whose plots are converted to Cartesian with `R` and `B C` evaluated at
+/// a chosen [`Linearization`] point. The measurement function, the bias model
+/// ([`PolarBias`]), the bias regressor `B C` ([`argus_sensors::bias_regressor`]) and the
+/// linearised conversion ([`argus_sensors::convert_polar`]) all come from `argus-sensors`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PolarSensor {
-    position: Vector<2>,
-    sigma_range: f64,
-    sigma_azimuth: f64,
+    radar: Polar2D<4>,
 }
 
 /// A plot converted to Cartesian: the position `z` (m, global frame), its noise
@@ -139,7 +107,7 @@ impl ConvertedPlot {
 }
 
 impl PolarSensor {
-    /// A sensor at `position` (m) with range noise σ (m) and azimuth noise σ (rad).
+    /// A sensor at `position` (m) with constant range noise σ (m) and azimuth noise σ (rad).
     ///
     /// # Errors
     /// [`RegistrationError::NonFinite`] or [`RegistrationError::InvalidParameter`] for a
@@ -151,90 +119,86 @@ impl PolarSensor {
     ) -> Result<Self, RegistrationError> {
         finite("sensor x", position[0])?;
         finite("sensor y", position[1])?;
-        Ok(Self {
-            position,
-            sigma_range: positive("range noise sigma", sigma_range)?,
-            sigma_azimuth: positive("azimuth noise sigma", sigma_azimuth)?,
-        })
+        let sigmas = Sigmas::polar(
+            positive("range noise sigma", sigma_range)?,
+            positive("azimuth noise sigma", sigma_azimuth)?,
+        )?;
+        Ok(Self::from_radar(Polar2D::cv(
+            [position[0], position[1]],
+            RadarNoise::Constant(sigmas),
+        )?))
+    }
+
+    /// A sensor from a polar radar model for the `[x, vx, y, vy]` layout (constant or
+    /// SNR-driven noise, evaluated at the linearisation point's range).
+    #[must_use]
+    pub fn from_radar(radar: Polar2D<4>) -> Self {
+        Self { radar }
+    }
+
+    /// The radar model.
+    #[must_use]
+    pub fn radar(&self) -> &Polar2D<4> {
+        &self.radar
     }
 
     /// The sensor position (m).
     #[must_use]
     pub fn position(&self) -> &Vector<2> {
-        &self.position
+        self.radar.sensor()
     }
 
-    /// Range and azimuth of a global position relative to the sensor (azimuth in (−π, π]).
+    /// Range and azimuth of a global position relative to the sensor (azimuth in (−π, π]),
+    /// by [`Polar2D`]'s measurement function.
     #[must_use]
     pub fn polar_of(&self, p: &Vector<2>) -> PolarPlot {
-        let d = p - self.position;
+        let z = self.radar.predict(&Vector::<4>::new(p[0], 0.0, p[1], 0.0));
         PolarPlot {
-            range: d.norm(),
-            azimuth: d[1].atan2(d[0]),
+            range: z[0],
+            azimuth: z[1],
         }
+    }
+
+    /// The noise standard deviations at `range`.
+    #[must_use]
+    pub fn sigmas(&self, range: f64) -> Sigmas {
+        self.radar.noise_model().sigmas_at_range(range)
     }
 
     /// The biased noisy plot of a target at global position `p`, eq (1):
-    /// `r = (1+ε_r) r_true + b_r + σr n_r`, `θ = (1+ε_θ) θ_true + b_θ + σθ n_θ`, where
-    /// `(n_r, n_θ)` are standard normal draws supplied by the caller.
-    #[must_use]
+    /// `r = (1+ε_r) r_true + b_r + σr n_r`, `θ = (1+ε_θ) θ_true + b_θ + σθ n_θ`
+    /// ([`PolarBias::apply`], then the noise), where `(n_r, n_θ)` are standard normal draws
+    /// supplied by the caller.
+    ///
+    /// # Errors
+    /// [`RegistrationError::Sensor`] for a non-finite position.
     pub fn biased_plot(
         &self,
         p: &Vector<2>,
-        bias: &SensorBias,
+        bias: &PolarBias,
         n_r: f64,
         n_theta: f64,
-    ) -> PolarPlot {
+    ) -> Result<PolarPlot, RegistrationError> {
         let t = self.polar_of(p);
-        let b = bias.vector();
-        PolarPlot {
-            range: (1.0 + b[2]) * t.range + b[0] + self.sigma_range * n_r,
-            azimuth: (1.0 + b[3]) * t.azimuth + b[1] + self.sigma_azimuth * n_theta,
-        }
-    }
-
-    /// The global Cartesian position of a polar plot.
-    #[must_use]
-    pub fn to_cartesian(&self, plot: &PolarPlot) -> Vector<2> {
-        self.position
-            + Vector::<2>::new(
-                plot.range * plot.azimuth.cos(),
-                plot.range * plot.azimuth.sin(),
-            )
-    }
-
-    /// The bias Jacobian `B C` at range `r` and azimuth `θ`, eqs (3)–(4):
-    /// `B = [[cos θ, −r sin θ], [sin θ, r cos θ]]`, `C = [[1, 0, r, 0], [0, 1, 0, θ]]`.
-    #[must_use]
-    pub fn bias_jacobian(range: f64, azimuth: f64) -> Matrix<2, 4> {
-        let (s, c) = azimuth.sin_cos();
-        let b = Matrix::<2, 2>::new(c, -range * s, s, range * c);
-        let cm = Matrix::<2, 4>::new(1.0, 0.0, range, 0.0, 0.0, 1.0, 0.0, azimuth);
-        b * cm
-    }
-
-    /// The converted noise covariance `B diag(σr², σθ²) Bᵀ` at `(r, θ)`, eq (6).
-    #[must_use]
-    pub fn converted_noise(&self, range: f64, azimuth: f64) -> Matrix<2, 2> {
-        let (s, c) = azimuth.sin_cos();
-        let b = Matrix::<2, 2>::new(c, -range * s, s, range * c);
-        let d = Matrix::<2, 2>::new(
-            self.sigma_range.powi(2),
-            0.0,
-            0.0,
-            self.sigma_azimuth.powi(2),
-        );
-        argus_core_math::symmetrize(&(b * d * b.transpose()))
+        let (r, a) = bias.apply(t.range, t.azimuth)?;
+        let s = self.sigmas(t.range);
+        Ok(PolarPlot {
+            range: r + s.range() * n_r,
+            azimuth: a + s.azimuth() * n_theta,
+        })
     }
 
     /// Converts a polar plot taken at `time`: `z` is the plot in Cartesian, and `R`, `B C`
     /// are evaluated at the plot (`at = None`, seed 004's choice) or at the global
-    /// position `at` (the local track's prediction; see [`Linearization`]).
+    /// position `at` (the local track's prediction; see [`Linearization`]):
+    /// `R = B diag(σr², σθ²) Bᵀ` (eq (6), the linearised [`convert_polar`]) and
+    /// `B C` = [`bias_regressor`] (eqs (3), (4)).
     ///
     /// # Errors
     /// [`RegistrationError::NonFinite`] for a non-finite plot or point,
-    /// [`RegistrationError::InvalidParameter`] for a non-positive range, and
-    /// [`RegistrationError::Math`] when `R` is singular (linearisation point on the sensor).
+    /// [`RegistrationError::InvalidParameter`] for a non-positive range,
+    /// [`RegistrationError::Sensor`] for a linearisation point on the sensor and
+    /// [`RegistrationError::Math`] when `R` is singular.
     pub fn convert(
         &self,
         time: f64,
@@ -244,18 +208,38 @@ impl PolarSensor {
         finite("plot range", plot.range)?;
         finite("plot azimuth", plot.azimuth)?;
         positive("plot range", plot.range)?;
-        let lin = match at {
-            None => *plot,
+        let s = |r: f64| self.sigmas(r);
+        let at_plot = {
+            let sp = s(plot.range);
+            convert_polar(
+                plot.range,
+                plot.azimuth,
+                sp.range(),
+                sp.azimuth(),
+                ConversionMethod::Linearized,
+            )?
+        };
+        let (lin, noise) = match at {
+            None => (*plot, at_plot.covariance),
             Some(p) => {
                 check_finite_vector(p, "linearisation point")?;
-                self.polar_of(p)
+                let lin = self.polar_of(p);
+                let sl = s(lin.range);
+                let c = convert_polar(
+                    lin.range,
+                    lin.azimuth,
+                    sl.range(),
+                    sl.azimuth(),
+                    ConversionMethod::Linearized,
+                )?;
+                (lin, c.covariance)
             }
         };
         ConvertedPlot::new(
             time,
-            self.to_cartesian(plot),
-            self.converted_noise(lin.range, lin.azimuth),
-            Self::bias_jacobian(lin.range, lin.azimuth),
+            self.position() + at_plot.position,
+            symmetrize(&noise),
+            bias_regressor(lin.range, lin.azimuth),
         )
     }
 }
@@ -274,7 +258,7 @@ mod tests {
             let tt = (1.0 + b[3]) * th + b[1];
             Vector::<2>::new(rr * tt.cos(), rr * tt.sin())
         };
-        let bc = PolarSensor::bias_jacobian(r, th);
+        let bc = bias_regressor(r, th);
         let steps = [1e-3, 1e-7, 1e-8, 1e-7];
         for k in 0..4 {
             let mut e = Vector::<4>::zeros();
@@ -300,7 +284,6 @@ mod tests {
                 ..
             })
         ));
-        assert!(SensorBias::new(1.0, f64::INFINITY, 0.0, 0.0).is_err());
         let s = PolarSensor::new(Vector::<2>::zeros(), 10.0, 1e-3).unwrap();
         let bad = PolarPlot {
             range: -1.0,
@@ -326,12 +309,23 @@ mod tests {
 
     #[test]
     fn converted_noise_has_polar_eigenvalues() {
-        // B diag(σr², σθ²) Bᵀ is a rotation of diag(σr², r² σθ²): eigenvalues σr², (r σθ)².
+        // B diag(σr², σθ²) Bᵀ is a rotation of diag(σr², r² σθ²): eigenvalues σr², (r σθ)²,
+        // here at the linearisation point (r = 20 km, θ = 1.1 rad), not at the plot.
         let s = PolarSensor::new(Vector::<2>::zeros(), 10.0, 1e-3).unwrap();
-        let r = s.converted_noise(20_000.0, 1.1);
-        let tr = r.trace();
-        let det = r.determinant();
-        assert!((tr - (100.0 + 400.0)).abs() < 1e-9);
-        assert!((det - 100.0 * 400.0).abs() < 1e-6);
+        let plot = PolarPlot {
+            range: 5_000.0,
+            azimuth: 0.3,
+        };
+        let at = Vector::<2>::new(20_000.0 * 1.1_f64.cos(), 20_000.0 * 1.1_f64.sin());
+        let c = s.convert(0.0, &plot, Some(&at)).unwrap();
+        let r = c.noise();
+        assert!((r.trace() - (100.0 + 400.0)).abs() < 1e-9);
+        assert!((r.determinant() - 100.0 * 400.0).abs() < 1e-6);
+        // The position is the plot's (5 km at 0.3 rad), the regressor the point's.
+        assert!(
+            (c.z() - Vector::<2>::new(5_000.0 * 0.3_f64.cos(), 5_000.0 * 0.3_f64.sin())).norm()
+                < 1e-9
+        );
+        assert!((c.bias_jacobian() - bias_regressor(20_000.0, 1.1)).amax() < 1e-9);
     }
 }

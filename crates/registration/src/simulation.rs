@@ -11,8 +11,9 @@ use argus_core_math::{Gaussian, Matrix, SpdFactor, Vector};
 
 use crate::error::{RegistrationError, finite, positive};
 use crate::local::{BiasedTrack, position_matrix};
-use crate::polar::{Linearization, PolarSensor, SensorBias};
+use crate::polar::{Linearization, PolarSensor};
 use crate::registrar::{Initiation, Registrar, RegistrarConfig};
+use argus_sensors::PolarBias;
 
 /// One sensor of the scenario: the radar, its true bias and its schedule.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -20,7 +21,7 @@ pub struct SensorSetup {
     /// The radar.
     pub sensor: PolarSensor,
     /// Its true bias.
-    pub bias: SensorBias,
+    pub bias: PolarBias,
     /// Scan period (s).
     pub period: f64,
     /// Time of its first plot (s).
@@ -81,7 +82,7 @@ impl ScenarioConfig {
         if targets == 0 {
             return Err(RegistrationError::Empty { what: "target set" });
         }
-        let bias = SensorBias::new(20.0, 2e-3, 3e-5, 2e-4)?;
+        let bias = PolarBias::new(20.0, 2e-3, 3e-5, 2e-4)?;
         let sensors = (0..sensors)
             .map(|s| {
                 Ok(SensorSetup {
@@ -193,7 +194,7 @@ impl ScenarioConfig {
     pub fn true_stacked_bias(&self) -> Vec<f64> {
         self.sensors
             .iter()
-            .flat_map(|s| s.bias.vector().iter().copied().collect::<Vec<_>>())
+            .flat_map(|s| s.bias.as_vector().iter().copied().collect::<Vec<_>>())
             .collect()
     }
 }
@@ -230,14 +231,21 @@ pub struct RunRecord {
     pub proposed_sq: Vec<[f64; 4]>,
     /// Per time: NEES of the stacked proposed estimate (`4S` degrees of freedom).
     pub proposed_nees: Vec<f64>,
+    /// Per time, per bias component: the proposed estimator's own variance `Σ_kk`
+    /// summed over sensors (what it predicts for `proposed_sq`).
+    pub proposed_var: Vec<[f64; 4]>,
     /// As `proposed_sq`, for EXX (empty when EXX does not run).
     pub exx_sq: Vec<[f64; 4]>,
     /// As `proposed_nees`, for EXX.
     pub exx_nees: Vec<f64>,
+    /// The stacked error `b − b̂` of the proposed estimate after the last plot (`4S`).
+    pub proposed_final_error: Vec<f64>,
     /// The recorded tracks.
     pub tracks: Vec<TrackRecord>,
     /// Number of plots processed.
     pub plots: usize,
+    /// Number of pseudo-measurement updates of the proposed estimator.
+    pub proposed_updates: usize,
 }
 
 fn sq_by_component(est: &crate::BiasEstimator, truth: &[f64]) -> [f64; 4] {
@@ -247,6 +255,17 @@ fn sq_by_component(est: &crate::BiasEstimator, truth: &[f64]) -> [f64; 4] {
         let e = t - b[(i, 0)];
         if let Some(o) = out.get_mut(i % 4) {
             *o += e * e;
+        }
+    }
+    out
+}
+
+fn var_by_component(est: &crate::BiasEstimator) -> [f64; 4] {
+    let sig = est.covariance();
+    let mut out = [0.0; 4];
+    for i in 0..sig.nrows() {
+        if let Some(o) = out.get_mut(i % 4) {
+            *o += sig[(i, i)];
         }
     }
     out
@@ -309,7 +328,7 @@ pub fn run(
             .collect(),
         ..RunRecord::default()
     };
-    let zero = SensorBias::zero();
+    let zero = PolarBias::zero();
     let filter = *reg.filter();
     for (time, s) in config.events() {
         let Some(setup) = config.sensors.get(s) else {
@@ -319,7 +338,7 @@ pub fn run(
             let x = config.truth(t, time);
             let p = Vector::<2>::new(x[0], x[2]);
             let (nr, nt) = (normal(), normal());
-            let plot = setup.sensor.biased_plot(&p, &setup.bias, nr, nt);
+            let plot = setup.sensor.biased_plot(&p, &setup.bias, nr, nt)?;
             reg.process(s, t, time, &plot)?;
             rec.plots += 1;
             if s != 0 {
@@ -329,7 +348,7 @@ pub fn run(
                 continue;
             };
             // Reference: same noise, no bias.
-            let clean = setup.sensor.biased_plot(&p, &zero, nr, nt);
+            let clean = setup.sensor.biased_plot(&p, &zero, nr, nt)?;
             let (Some(slot), Some(pend), Some(tr_rec)) = (
                 reference.get_mut(k),
                 ref_pending.get_mut(k),
@@ -373,11 +392,19 @@ pub fn run(
         rec.proposed_sq
             .push(sq_by_component(reg.proposed(), &truth_bias));
         rec.proposed_nees.push(reg.proposed().nees(&truth_bias)?);
+        rec.proposed_var.push(var_by_component(reg.proposed()));
         if let Some(e) = reg.exx() {
             rec.exx_sq.push(sq_by_component(e, &truth_bias));
             rec.exx_nees.push(e.nees(&truth_bias)?);
         }
     }
+    rec.proposed_updates = reg.proposed().updates();
+    let b = reg.proposed().stacked();
+    rec.proposed_final_error = truth_bias
+        .iter()
+        .enumerate()
+        .map(|(i, t)| t - b[(i, 0)])
+        .collect();
     Ok(rec)
 }
 
@@ -388,6 +415,9 @@ pub struct Summary {
     pub times: Vec<f64>,
     /// Per time: RMSE of each bias component over runs and sensors (proposed).
     pub proposed_rmse: Vec<[f64; 4]>,
+    /// Per time: the RMSE the proposed estimator predicts for itself, `sqrt(mean Σ_kk)`
+    /// over runs and sensors, per bias component.
+    pub proposed_predicted: Vec<[f64; 4]>,
     /// Per time: average NEES of the stacked proposed estimate.
     pub proposed_anees: Vec<f64>,
     /// As `proposed_rmse`, for EXX.
@@ -501,6 +531,10 @@ impl Summary {
         Ok(Self {
             times,
             proposed_rmse,
+            proposed_predicted: rms4(
+                &runs.iter().map(|r| &r.proposed_var).collect::<Vec<_>>(),
+                per,
+            ),
             proposed_anees: mean_series(&collect(&|r| &r.proposed_nees)),
             exx_rmse: rms4(&runs.iter().map(|r| &r.exx_sq).collect::<Vec<_>>(), per),
             exx_anees: mean_series(&collect(&|r| &r.exx_nees)),

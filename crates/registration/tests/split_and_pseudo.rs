@@ -7,12 +7,19 @@ use argus_core_math::faer::Mat;
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_registration::{
     BiasEstimator, BiasedLocalFilter, BiasedTrack, ConvertedPlot, Initiation, Linearization,
-    PolarPlot, PolarSensor, Registrar, RegistrarConfig, RegistrationError, SensorBias,
-    exx_pseudo_measurement, position_matrix, pseudo_measurement,
+    PolarPlot, PolarSensor, Registrar, RegistrarConfig, RegistrationError, exx_pseudo_measurement,
+    position_matrix, pseudo_measurement,
 };
+use argus_sensors::PolarBias;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
+
+/// `B C` and `R` of `sensor` at the global position `p` (the noise-free plot of `p`).
+fn linearised_at(sensor: &PolarSensor, p: &Vector<2>) -> (Matrix<2, 4>, Matrix<2, 2>) {
+    let c = sensor.convert(0.0, &sensor.polar_of(p), None).unwrap();
+    (*c.bias_jacobian(), *c.noise())
+}
 
 fn truth(t: f64) -> Vector<4> {
     Vector::<4>::new(3_000.0 + 20.0 * t, 20.0, 15_000.0 + 20.0 * t, 20.0)
@@ -29,9 +36,7 @@ fn run_linearised(beta: &Vector<4>, two_point: bool) -> BiasedTrack {
     for k in 0..40 {
         let t = f64::from(k);
         let x = truth(t);
-        let pol = sensor.polar_of(&(h * x));
-        let bc = PolarSensor::bias_jacobian(pol.range, pol.azimuth);
-        let r = sensor.converted_noise(pol.range, pol.azimuth);
+        let (bc, r) = linearised_at(&sensor, &(h * x));
         let w = r.cholesky().unwrap().l()
             * Vector::<2>::new(
                 StandardNormal.sample(&mut rng),
@@ -80,7 +85,7 @@ fn split_holds_to_second_order_on_polar_plots() {
     // second order in the bias. With r ≈ 20 km, δθ ≈ 2.2 mrad: r δθ²/2 ≈ 0.05 m, δr·δθ ≈
     // 0.05 m; allow 0.5 m (against |G β| ≈ 60 m).
     let sensor = PolarSensor::new(Vector::<2>::zeros(), 10.0, 1e-3).unwrap();
-    let bias = SensorBias::new(20.0, 2e-3, 3e-5, 2e-4).unwrap();
+    let bias = PolarBias::new(20.0, 2e-3, 3e-5, 2e-4).unwrap();
     let f = BiasedLocalFilter::new(6.0).unwrap();
     let h = position_matrix();
     let mut rng = ChaCha8Rng::seed_from_u64(9);
@@ -98,10 +103,10 @@ fn split_holds_to_second_order_on_polar_plots() {
             StandardNormal.sample(&mut rng),
             StandardNormal.sample(&mut rng),
         );
-        let pb = sensor.biased_plot(&p, &bias, a, b);
-        let pc = sensor.biased_plot(&p, &SensorBias::zero(), a, b);
+        let pb = sensor.biased_plot(&p, &bias, a, b).unwrap();
+        let pc = sensor.biased_plot(&p, &PolarBias::zero(), a, b).unwrap();
         // Evaluate R, B C at the clean plot for both so the gains coincide.
-        let at = sensor.to_cartesian(&pc);
+        let at = *sensor.convert(t, &pc, None).unwrap().z();
         tb = f
             .update(&tb, &sensor.convert(t, &pb, Some(&at)).unwrap())
             .unwrap();
@@ -109,14 +114,14 @@ fn split_holds_to_second_order_on_polar_plots() {
             .update(&tc, &sensor.convert(t, &pc, Some(&at)).unwrap())
             .unwrap();
     }
-    let split = tb.estimate().mean() - tb.g() * bias.vector();
+    let split = tb.estimate().mean() - tb.g() * bias.as_vector();
     let d = split - tc.estimate().mean();
     assert!(
         d[0].hypot(d[2]) < 0.5,
         "position split error {}",
         d[0].hypot(d[2])
     );
-    assert!((tb.g() * bias.vector()).amax() > 30.0);
+    assert!((tb.g() * bias.as_vector()).amax() > 30.0);
 }
 
 #[test]
@@ -144,9 +149,7 @@ fn pseudo_measurements_are_exact_without_noise() {
     let tr1 = mk(g1, &betas[1], 9.5);
     let tr2 = mk(g2, &betas[2], 9.25);
     let t = 10.0;
-    let pol = sensors[0].polar_of(&(h * truth(t)));
-    let bc = PolarSensor::bias_jacobian(pol.range, pol.azimuth);
-    let r0 = sensors[0].converted_noise(pol.range, pol.azimuth);
+    let (bc, r0) = linearised_at(&sensors[0], &(h * truth(t)));
     let plot = ConvertedPlot::new(t, h * truth(t) + bc * betas[0], r0, bc).unwrap();
     let pm = pseudo_measurement(&f, 3, 0, &plot, &[(1, &tr1), (2, &tr2)]).unwrap();
     let b = Mat::from_fn(12, 1, |i, _| betas[i / 4][i % 4]);
@@ -190,18 +193,8 @@ fn exx_cancels_a_constant_velocity_state() {
     ];
     let mk = |s: usize, t: f64| {
         let p = h * truth(t);
-        let pol = sensors[s].polar_of(&p);
-        let bc = PolarSensor::bias_jacobian(pol.range, pol.azimuth);
-        (
-            s,
-            ConvertedPlot::new(
-                t,
-                p + bc * betas[s],
-                sensors[s].converted_noise(pol.range, pol.azimuth),
-                bc,
-            )
-            .unwrap(),
-        )
+        let (bc, r) = linearised_at(&sensors[s], &p);
+        (s, ConvertedPlot::new(t, p + bc * betas[s], r, bc).unwrap())
     };
     let triple = [mk(0, 0.0), mk(1, 0.5), mk(0, 1.0)];
     let pm = exx_pseudo_measurement(2, &triple).unwrap();
