@@ -1,8 +1,8 @@
 //! Data association in clutter (seed 002): the validation gate, the nearest-neighbour
 //! (NN), strongest-neighbour (SN), probabilistic strongest-neighbour (PSN) and
 //! probabilistic data association (PDA) filters, the Rayleigh/Swerling I amplitude
-//! model, and off-line performance prediction (HYCA for NN, the information reduction
-//! factor for PDA).
+//! model, and off-line performance prediction (HYCA for NN, with the recursion's own
+//! gain or the plain NN's Kalman gain; the information reduction factor for PDA).
 //!
 //! Every association filter implements [`Associator`]: it takes the predicted
 //! estimate and the [`MeasurementPrediction`](argus_filters::MeasurementPrediction)
@@ -48,7 +48,7 @@ pub use imm::imm_associate;
 pub use neighbour::{NearestNeighbour, StrongestNeighbour};
 pub use pda::{ClutterModel, Pda};
 pub use prediction::{
-    LinearSystem, PerformancePredictor, PredictedFilter, PredictionStep, SteadyState, hyca_factors,
-    pda_irf,
+    LinearSystem, NnMoments, PerformancePredictor, PredictedFilter, PredictionStep, SteadyState,
+    hyca_factors, nn_moments, pda_irf,
 };
 pub use psn::Psn;
