@@ -67,6 +67,10 @@ pub(crate) fn gnn(rows: usize, cols: usize, edges: &[Edge], miss: &[f64]) -> Vec
         row_ids.dedup();
         col_ids.sort_unstable();
         col_ids.dedup();
+        if row_ids.len() > MAX_OPTIMAL_ROWS {
+            greedy(cluster, edges, miss, &mut out);
+            continue;
+        }
         let (nr, nc) = (row_ids.len(), col_ids.len());
         let width = nc + nr;
         let big = 1e6
@@ -128,6 +132,25 @@ pub(crate) fn clusters(rows: usize, cols: usize, edges: &[(usize, usize)]) -> Ve
     out
 }
 
+/// Clusters with more rows than this are assigned greedily (the dense solver is cubic in
+/// the cluster size; such clusters arise from chains of initiation gates in dense clutter).
+pub(crate) const MAX_OPTIMAL_ROWS: usize = 64;
+
+/// Greedy assignment of one cluster: pairs in increasing cost, each row and column once,
+/// only pairs cheaper than the row's miss cost.
+fn greedy(cluster: &[(usize, usize)], edges: &[Edge], miss: &[f64], out: &mut [Option<usize>]) {
+    let mut order: Vec<usize> = cluster.iter().map(|&(_, k)| k).collect();
+    order.sort_unstable_by(|&a, &b| edges[a].2.total_cmp(&edges[b].2));
+    let mut col_used = std::collections::HashSet::new();
+    for k in order {
+        let (r, c, w) = edges[k];
+        if out[r].is_some() || w >= miss[r] || !col_used.insert(c) {
+            continue;
+        }
+        out[r] = Some(c);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -148,5 +171,21 @@ mod tests {
         // A miss cheaper than the pair: left unassigned.
         let out = gnn(1, 1, &[(0, 0, 5.0)], &[4.0]);
         assert_eq!(out, vec![None]);
+    }
+
+    #[test]
+    fn large_clusters_are_paired_greedily() {
+        // A chain of 70 rows (> MAX_OPTIMAL_ROWS): row r gates column r (cost 1) and
+        // column r + 1 (cost 0.5). Greedy takes every 0.5 pair first: row r → column r + 1.
+        let rows = MAX_OPTIMAL_ROWS + 6;
+        let mut edges = Vec::new();
+        for r in 0..rows {
+            edges.push((r, r, 1.0));
+            edges.push((r, r + 1, 0.5));
+        }
+        let out = gnn(rows, rows + 1, &edges, &vec![10.0; rows]);
+        for (r, c) in out.iter().enumerate() {
+            assert_eq!(*c, Some(r + 1));
+        }
     }
 }

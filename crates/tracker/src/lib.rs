@@ -17,7 +17,9 @@
 //!    [`argus_filters::MeasurementPrediction`]. The cost is tracks × plots near each
 //!    track, not tracks × all plots.
 //! 3. **GNN.** Gated pairs form a bipartite graph whose connected components
-//!    (clusters) are solved one by one by an optimal 2-D assignment minimising the sum
+//!    (clusters) are solved one by one (clusters of more than 64 tracks, which chains of
+//!    large initiation gates can form in dense clutter, greedily by increasing cost —
+//!    an approximation) by an optimal 2-D assignment minimising the sum
 //!    of normalised distances `νᵀ S⁻¹ ν`, a track staying unassigned at cost `γ`.
 //!    Confirmed tracks are served first, tentative ones take the plots left.
 //!    **JPDA** ([`AssociationConfig::Jpda`]) may replace GNN for confirmed tracks: per
