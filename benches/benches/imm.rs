@@ -8,8 +8,9 @@ use std::hint::black_box;
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::Kf;
 use argus_imm::{
-    Imm, ImmEstimate, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances,
-    PlotConversion, PolarPlot, UnbiasedConversion, VariationalEstimate, VariationalNoiseImm,
+    EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate, MarkovMatrix, MultiImm, MultiImmEstimate,
+    NoiseGrid, NoiseVariances, PlotConversion, PolarPlot, UnbiasedConversion, VariationalEstimate,
+    VariationalNoiseImm,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -76,6 +77,16 @@ fn benches(c: &mut Criterion) {
     g.bench_function("variational_imm_step", |b| {
         b.iter(|| {
             vb.step(black_box(&vest), 5.0, black_box(&plot), &conv)
+                .unwrap()
+        });
+    });
+
+    // The evidence estimator: five IMMs (15 filter cycles), the cost of the 5 × 3 rule.
+    let ev = EvidenceNoiseImm::new(paper_imm(), 0.2, 1.0, Some(0.05)).unwrap();
+    let eest = EvidenceEstimate::new(start(), var, 2.0).unwrap();
+    g.bench_function("evidence_imm_step", |b| {
+        b.iter(|| {
+            ev.step(black_box(&eest), 5.0, black_box(&plot), &conv)
                 .unwrap()
         });
     });
