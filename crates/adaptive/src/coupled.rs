@@ -5,7 +5,7 @@ use argus_core_math::{Gaussian, Matrix, check_finite_matrix};
 use argus_filters::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction, check_dt};
 use argus_sensors::MeasurementModel;
 
-use crate::decoupled_error::{AdaptiveError, positive};
+use crate::error::{AdaptiveError, positive};
 
 /// A linear Kalman filter for the 3-D constant-velocity state
 /// `[x, vx, y, vy, z, vz]` with discrete white-noise acceleration `q` per axis:

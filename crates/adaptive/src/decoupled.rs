@@ -9,8 +9,8 @@
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::check_dt;
 
-use crate::decoupled_error::{AdaptiveError, positive};
 use crate::decoupled_plot::{ConvertedPlot, check_frame};
+use crate::error::{AdaptiveError, positive};
 
 /// How the aligned-frame covariance is carried from one plot's frame to the next.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -73,7 +73,7 @@ impl DecoupledEstimate {
         frame: Matrix<3, 3>,
     ) -> Result<Self, AdaptiveError> {
         for v in mean.iter() {
-            crate::decoupled_error::finite(*v, "estimate mean")?;
+            crate::error::finite(*v, "estimate mean")?;
         }
         for b in &blocks {
             check_block(b, "construction")?;
@@ -308,6 +308,21 @@ impl DecoupledFilter {
             blocks,
             frame: prior.frame,
         })
+    }
+
+    /// The predicted position variances along `plot`'s aligned axes, `p̄ₖ = P̄ₖ⁻[0,0]`
+    /// after the frame handling: what [`DecoupledFilter::update`] adds `r̄ₖ` to.
+    #[must_use]
+    pub fn aligned_position_variances(
+        &self,
+        predicted: &DecoupledEstimate,
+        plot: &ConvertedPlot,
+    ) -> Vector<3> {
+        let blocks = match self.frame_handling {
+            FrameHandling::Fixed => predicted.blocks,
+            FrameHandling::Rotate => predicted.rotated_blocks(plot.frame()),
+        };
+        Vector::<3>::new(blocks[0][(0, 0)], blocks[1][(0, 0)], blocks[2][(0, 0)])
     }
 
     /// Updates with a converted plot, using the plot's aligned variances as `R̄`.

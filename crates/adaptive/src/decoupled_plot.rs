@@ -1,11 +1,13 @@
-//! Radar-beacon plots: spherical measurements, their SNR-driven accuracy
-//! (seed 003 eqs 6–8) and their conversion to Cartesian positions with the
-//! measurement-aligned frame the decoupled filter works in (eqs 9–12, corrected).
+//! Radar-beacon plots: spherical measurements and their conversion to Cartesian
+//! positions with the measurement-aligned frame the decoupled filter works in
+//! (seed 003 eqs 9–12, corrected). Their SNR-driven accuracy (eqs 6–8) is
+//! `argus_sensors`' [`SnrNoise`](argus_sensors::SnrNoise) with a
+//! [`LinkBudget`](argus_sensors::LinkBudget).
 
 use argus_core_math::{Matrix, Vector};
-use argus_sensors::{LinearMeasurementModel, MeasurementModel};
+use argus_sensors::{LinearMeasurementModel, MeasurementModel, Sigmas};
 
-use crate::decoupled_error::{AdaptiveError, finite, positive};
+use crate::error::{AdaptiveError, finite, positive};
 
 /// Tolerance on `|DᵀD − I|` for a frame to count as orthonormal.
 const ORTHONORMAL_TOL: f64 = 1e-9;
@@ -72,150 +74,6 @@ impl SphericalPlot {
     }
 }
 
-/// Standard deviations of one plot's range (m), azimuth (rad) and elevation (rad) noise.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SphericalSigmas {
-    /// σr, m.
-    pub range: f64,
-    /// σψ, rad.
-    pub azimuth: f64,
-    /// σθ, rad.
-    pub elevation: f64,
-}
-
-impl SphericalSigmas {
-    /// Validated standard deviations.
-    ///
-    /// # Errors
-    /// [`AdaptiveError::NonFinite`] or [`AdaptiveError::InvalidParameter`] for a
-    /// value that is not finite and positive.
-    pub fn new(range: f64, azimuth: f64, elevation: f64) -> Result<Self, AdaptiveError> {
-        Ok(Self {
-            range: positive(range, "sigma range")?,
-            azimuth: positive(azimuth, "sigma azimuth")?,
-            elevation: positive(elevation, "sigma elevation")?,
-        })
-    }
-
-    /// All three scaled by `factor` (the degraded cases of seed 003 use 5 and 10).
-    ///
-    /// # Errors
-    /// As [`SphericalSigmas::new`] for a non-positive or non-finite factor.
-    pub fn scaled(&self, factor: f64) -> Result<Self, AdaptiveError> {
-        positive(factor, "sigma scale factor")?;
-        Self::new(
-            self.range * factor,
-            self.azimuth * factor,
-            self.elevation * factor,
-        )
-    }
-}
-
-/// The SNR-driven accuracy of a radar beacon system (seed 003 eqs 6–8, after Curry 2004):
-/// `σr = Δr / √(2 SNR)`, `σψ = ψ_BW / (k_m √(2 SNR))`, `σθ = θ_BW / (k_m √(2 SNR))`,
-/// with a link budget `SNR(R) = SNR_ref (R_ref / R)²` (a one-way beacon link).
-///
-/// # References
-/// Kim & Hwang (2013), seed 003, eqs (6)–(8); the 1/R² link is SPEC section 003.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RbsNoiseModel {
-    range_resolution: f64,
-    azimuth_beamwidth: f64,
-    elevation_beamwidth: f64,
-    monopulse_slope: f64,
-    reference_range: f64,
-    reference_snr: f64,
-}
-
-impl RbsNoiseModel {
-    /// A model with range resolution `Δr` (m), beamwidths (rad), monopulse slope
-    /// `k_m`, and the mean SNR (linear, not dB) `reference_snr` at `reference_range` (m).
-    ///
-    /// # Errors
-    /// [`AdaptiveError::NonFinite`] or [`AdaptiveError::InvalidParameter`] for
-    /// any value that is not finite and positive.
-    pub fn new(
-        range_resolution: f64,
-        azimuth_beamwidth: f64,
-        elevation_beamwidth: f64,
-        monopulse_slope: f64,
-        reference_range: f64,
-        reference_snr: f64,
-    ) -> Result<Self, AdaptiveError> {
-        Ok(Self {
-            range_resolution: positive(range_resolution, "range resolution")?,
-            azimuth_beamwidth: positive(azimuth_beamwidth, "azimuth beamwidth")?,
-            elevation_beamwidth: positive(elevation_beamwidth, "elevation beamwidth")?,
-            monopulse_slope: positive(monopulse_slope, "monopulse slope k_m")?,
-            reference_range: positive(reference_range, "reference range")?,
-            reference_snr: positive(reference_snr, "reference SNR")?,
-        })
-    }
-
-    /// A model calibrated so that `σr = sigma_range` at the mean SNR at
-    /// `reference_range`: `SNR_ref = (Δr / σr)² / 2` (eq 6 solved for SNR).
-    ///
-    /// # Errors
-    /// As [`RbsNoiseModel::new`].
-    pub fn calibrated(
-        range_resolution: f64,
-        azimuth_beamwidth: f64,
-        elevation_beamwidth: f64,
-        monopulse_slope: f64,
-        reference_range: f64,
-        sigma_range: f64,
-    ) -> Result<Self, AdaptiveError> {
-        positive(range_resolution, "range resolution")?;
-        positive(sigma_range, "reference sigma range")?;
-        let snr = 0.5 * (range_resolution / sigma_range).powi(2);
-        Self::new(
-            range_resolution,
-            azimuth_beamwidth,
-            elevation_beamwidth,
-            monopulse_slope,
-            reference_range,
-            snr,
-        )
-    }
-
-    /// The mean SNR (linear) at `range` m from the link budget.
-    ///
-    /// # Errors
-    /// [`AdaptiveError::InvalidParameter`] for a range that is not finite and positive.
-    pub fn mean_snr(&self, range: f64) -> Result<f64, AdaptiveError> {
-        positive(range, "range")?;
-        Ok(self.reference_snr * (self.reference_range / range).powi(2))
-    }
-
-    /// The mean SNR at the reference range (linear).
-    #[must_use]
-    pub fn reference_snr(&self) -> f64 {
-        self.reference_snr
-    }
-
-    /// The plot accuracy at a given SNR (linear), eqs (6)–(8).
-    ///
-    /// # Errors
-    /// [`AdaptiveError::InvalidParameter`] for an SNR that is not finite and positive.
-    pub fn sigmas_at_snr(&self, snr: f64) -> Result<SphericalSigmas, AdaptiveError> {
-        positive(snr, "SNR")?;
-        let root = (2.0 * snr).sqrt();
-        SphericalSigmas::new(
-            self.range_resolution / root,
-            self.azimuth_beamwidth / (self.monopulse_slope * root),
-            self.elevation_beamwidth / (self.monopulse_slope * root),
-        )
-    }
-
-    /// The accuracy at the link-budget mean SNR at `range` (what the filters assume).
-    ///
-    /// # Errors
-    /// As [`RbsNoiseModel::mean_snr`].
-    pub fn sigmas_at_range(&self, range: f64) -> Result<SphericalSigmas, AdaptiveError> {
-        self.sigmas_at_snr(self.mean_snr(range)?)
-    }
-}
-
 /// A plot converted to Cartesian `(x, y, z)` with its first-order covariance
 /// kept in the measurement-aligned frame.
 ///
@@ -237,23 +95,23 @@ pub struct ConvertedPlot {
 }
 
 impl ConvertedPlot {
-    /// Converts a spherical plot with the given accuracy.
+    /// Converts a spherical plot with the given accuracy (range m, azimuth and
+    /// elevation rad; e.g. [`SnrNoise::sigmas_at_range`](argus_sensors::SnrNoise::sigmas_at_range)).
     ///
     /// # Errors
-    /// [`AdaptiveError::NonFinite`] if the conversion overflows.
-    pub fn from_spherical(
-        plot: &SphericalPlot,
-        sigmas: &SphericalSigmas,
-    ) -> Result<Self, AdaptiveError> {
+    /// [`AdaptiveError::NonFinite`] if the conversion overflows,
+    /// [`AdaptiveError::InvalidParameter`] when a standard deviation is zero (the
+    /// aligned variances must be positive).
+    pub fn from_spherical(plot: &SphericalPlot, sigmas: &Sigmas) -> Result<Self, AdaptiveError> {
         let (r, psi, theta) = (plot.range, plot.azimuth, plot.elevation);
         let (sp, cp) = psi.sin_cos();
         let (st, ct) = theta.sin_cos();
         let position = Vector::<3>::new(r * cp * ct, r * sp * ct, r * st);
         let frame = aligned_frame(psi, theta);
         let aligned_variances = Vector::<3>::new(
-            sigmas.range.powi(2),
-            (r * ct * sigmas.azimuth).powi(2),
-            (r * sigmas.elevation).powi(2),
+            sigmas.range().powi(2),
+            (r * ct * sigmas.azimuth()).powi(2),
+            (r * sigmas.elevation()).powi(2),
         );
         Self::new(position, frame, aligned_variances)
     }
@@ -386,7 +244,7 @@ mod tests {
         // R_c = J diag(σ²) Jᵀ with J from central differences of eq (9); agreement to 1e-6 relative
         // (step 1e-6 in each coordinate, truncation error O(h²)).
         let (r, psi, theta) = (3005.8, 3.17, 0.052);
-        let s = SphericalSigmas::new(2.97, 4.3e-4, 4.3e-4).unwrap();
+        let s = Sigmas::new(2.97, 4.3e-4, 4.3e-4).unwrap();
         let plot =
             ConvertedPlot::from_spherical(&SphericalPlot::new(r, psi, theta).unwrap(), &s).unwrap();
         let h = 1e-6;
@@ -404,9 +262,9 @@ mod tests {
             &((convert(r, psi, theta + h) - convert(r, psi, theta - h)) / (2.0 * h)),
         );
         let rs = Matrix::<3, 3>::from_diagonal(&Vector::<3>::new(
-            s.range.powi(2),
-            s.azimuth.powi(2),
-            s.elevation.powi(2),
+            s.range().powi(2),
+            s.azimuth().powi(2),
+            s.elevation().powi(2),
         ));
         let want = j * rs * j.transpose();
         let got = plot.cartesian_noise();
@@ -426,27 +284,38 @@ mod tests {
     }
 
     #[test]
-    fn noise_model_eqs_6_to_8() {
-        // Calibration of SPEC 003: σr = 2.97 m at 3006 m with Δr = 149.9 m → SNR = (149.9/2.97)²/2.
-        let m = RbsNoiseModel::calibrated(
-            149.9,
-            2f64.to_radians(),
-            2f64.to_radians(),
-            1.6,
-            3006.0,
-            2.97,
-        )
-        .unwrap();
-        let snr = 0.5 * (149.9f64 / 2.97).powi(2);
-        assert!((m.reference_snr() - snr).abs() < 1e-9);
-        let s = m.sigmas_at_range(3006.0).unwrap();
-        assert!((s.range - 2.97).abs() < 1e-12);
-        // σψ = ψ_BW / (k_m √(2 SNR)) = (2° in rad) · 2.97 / (1.6 · 149.9).
-        let want = 2f64.to_radians() * 2.97 / (1.6 * 149.9);
-        assert!((s.azimuth - want).abs() < 1e-15);
-        // 1/R² link: doubling the range halves √SNR, doubling σ.
-        let s2 = m.sigmas_at_range(6012.0).unwrap();
-        assert!((s2.range - 5.94).abs() < 1e-12);
+    fn sensors_snr_noise_gives_the_eqs_6_to_8_plots() {
+        // The plots' accuracy now comes from argus_sensors' SnrNoise; it must give what this
+        // module computed before (eqs 6–8 written out here, calibration SNR_ref = (Δr/σr)²/2 of
+        // SPEC 003), so the experiment's results are unchanged. Tolerance 1e-14 relative: the two
+        // evaluation orders differ by at most a few ulps.
+        let (dr, bw, km, r_ref, s_ref) = (149.9, 2f64.to_radians(), 1.6, 3006.0, 2.97);
+        let link = argus_sensors::SnrNoise::link_for_range_sigma(dr, s_ref, r_ref).unwrap();
+        let noise = argus_sensors::SnrNoise::new(dr, bw, bw, km, link).unwrap();
+        let snr_ref = 0.5 * (dr / s_ref).powi(2);
+        let rel = |a: f64, b: f64| ((a - b) / b).abs();
+        assert!(rel(link.snr_ref(), snr_ref) < 1e-14);
+        for (range, db) in [(3006.0, 0.0), (6012.0, 0.0), (5713.4, 2.7), (410.0, -4.1)] {
+            let snr = snr_ref * (r_ref / range).powi(2) * 10f64.powf(db / 10.0);
+            let root = (2.0 * snr).sqrt();
+            let (sr, sa) = (dr / root, bw / (km * root));
+            let s = noise.sigmas_at_snr(snr).unwrap();
+            assert!(rel(s.range(), sr) < 1e-14 && rel(s.azimuth(), sa) < 1e-14);
+            assert!(rel(s.elevation(), sa) < 1e-14);
+            let plot = SphericalPlot::new(range, 3.13, 0.05).unwrap();
+            let c = ConvertedPlot::from_spherical(&plot, &s).unwrap();
+            let want = [
+                sr * sr,
+                (range * 0.05f64.cos() * sa).powi(2),
+                (range * sa).powi(2),
+            ];
+            for (g, w) in c.aligned_variances().iter().zip(want) {
+                assert!(rel(*g, w) < 1e-13, "{g} vs {w}");
+            }
+        }
+        // At the calibration range σr = 2.97 m; the 1/R² link doubles σ at twice the range.
+        assert!((noise.sigmas_at_range(3006.0).range() - 2.97).abs() < 1e-12);
+        assert!((noise.sigmas_at_range(6012.0).range() - 5.94).abs() < 1e-12);
     }
 
     #[test]
@@ -472,8 +341,15 @@ mod tests {
                 ..
             })
         ));
-        assert!(SphericalSigmas::new(1.0, 0.0, 1.0).is_err());
-        assert!(RbsNoiseModel::new(1.0, 1.0, 1.0, f64::INFINITY, 1.0, 1.0).is_err());
+        // A zero standard deviation gives a zero aligned variance: rejected, not a singular R.
+        let zero = Sigmas::new(1.0, 0.0, 1.0).unwrap();
+        assert!(matches!(
+            ConvertedPlot::from_spherical(&SphericalPlot::new(100.0, 0.0, 0.1).unwrap(), &zero),
+            Err(AdaptiveError::InvalidParameter {
+                what: "aligned measurement variance",
+                ..
+            })
+        ));
         let bad_frame = Matrix::<3, 3>::identity() * 1.1;
         assert!(matches!(
             ConvertedPlot::new(Vector::<3>::zeros(), bad_frame, Vector::<3>::repeat(1.0)),

@@ -17,6 +17,7 @@
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::GaussianFilter;
+use argus_sensors::{Sigmas, SnrNoise};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
@@ -26,16 +27,20 @@ use crate::adaptive_r::{
 };
 use crate::coupled::CoupledCvFilter;
 use crate::decoupled::{DecoupledEstimate, DecoupledFilter, FrameHandling};
-use crate::decoupled_error::{AdaptiveError, positive};
-use crate::decoupled_plot::{ConvertedPlot, RbsNoiseModel, SphericalPlot, SphericalSigmas};
+use crate::decoupled_plot::{ConvertedPlot, SphericalPlot};
+use crate::error::{AdaptiveError, positive};
 
 /// The filters run side by side on the same plots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum FilterKind {
     /// Conventional decoupled filter (assumed R).
     Cdkf,
-    /// Adaptive decoupled filter as in the paper (window L from the first plot).
+    /// Adaptive decoupled filter with our start-up ([`Warmup::InnovationScale`]):
+    /// `R` scaled from the innovations for the first L plots, then the paper's method.
     Adkf,
+    /// Adaptive decoupled filter as printed (window L from the first plot, from the
+    /// assumed `R`: [`Warmup::Constant`]).
+    AdkfPaper,
     /// ADKF with a window growing 1…L (our warm-up variant).
     AdkfGrowing,
     /// ADKF with innovation-based samples during the first L plots.
@@ -46,9 +51,10 @@ pub enum FilterKind {
 
 impl FilterKind {
     /// All filters in output order.
-    pub const ALL: [Self; 5] = [
+    pub const ALL: [Self; 6] = [
         Self::Cdkf,
         Self::Adkf,
+        Self::AdkfPaper,
         Self::AdkfGrowing,
         Self::AdkfInnovation,
         Self::Coupled,
@@ -60,6 +66,7 @@ impl FilterKind {
         match self {
             Self::Cdkf => "CDKF",
             Self::Adkf => "ADKF",
+            Self::AdkfPaper => "ADKF-paper",
             Self::AdkfGrowing => "ADKF-grow",
             Self::AdkfInnovation => "ADKF-innov",
             Self::Coupled => "KF6",
@@ -72,16 +79,21 @@ impl FilterKind {
         match self {
             Self::Cdkf => 0,
             Self::Adkf => 1,
-            Self::AdkfGrowing => 2,
-            Self::AdkfInnovation => 3,
-            Self::Coupled => 4,
+            Self::AdkfPaper => 2,
+            Self::AdkfGrowing => 3,
+            Self::AdkfInnovation => 4,
+            Self::Coupled => 5,
         }
     }
 }
 
-/// The three adaptive variants, in [`FilterKind`] order.
-const ADAPTIVE: [FilterKind; 3] = [
+/// The number of filters run side by side.
+pub const FILTERS: usize = FilterKind::ALL.len();
+
+/// The adaptive variants, in [`FilterKind`] order (index 0 = ADKF).
+pub const ADAPTIVE: [FilterKind; 4] = [
     FilterKind::Adkf,
+    FilterKind::AdkfPaper,
     FilterKind::AdkfGrowing,
     FilterKind::AdkfInnovation,
 ];
@@ -166,11 +178,11 @@ impl RbsLandingConfig {
             });
         }
         positive(self.ground_distance, "ground_distance")?;
-        crate::decoupled_error::finite(self.runway_y, "runway_y")?;
+        crate::error::finite(self.runway_y, "runway_y")?;
         positive(self.accel_sd, "accel_sd")?;
         positive(self.init_pos_sd, "init_pos_sd")?;
         positive(self.init_vel_sd, "init_vel_sd")?;
-        crate::decoupled_error::finite(self.snr_fluctuation_db, "snr_fluctuation_db")?;
+        crate::error::finite(self.snr_fluctuation_db, "snr_fluctuation_db")?;
         if self.snr_fluctuation_db < 0.0 {
             return Err(AdaptiveError::InvalidParameter {
                 what: "snr_fluctuation_db",
@@ -190,20 +202,25 @@ impl RbsLandingConfig {
         Ok(())
     }
 
-    /// The radar's noise model.
+    /// The radar's SNR-driven noise (seed 003 eqs 6–8): a 1/R² link calibrated so
+    /// that `σr` = `reference_sigma_range` at the mean SNR at `reference_range`.
     ///
     /// # Errors
-    /// As [`RbsNoiseModel::calibrated`].
-    pub fn noise_model(&self) -> Result<RbsNoiseModel, AdaptiveError> {
+    /// [`AdaptiveError::Sensor`] for a parameter that is not finite and positive.
+    pub fn noise_model(&self) -> Result<SnrNoise, AdaptiveError> {
         let bw = self.beamwidth_deg.to_radians();
-        RbsNoiseModel::calibrated(
+        let link = SnrNoise::link_for_range_sigma(
+            self.range_resolution,
+            self.reference_sigma_range,
+            self.reference_range,
+        )?;
+        Ok(SnrNoise::new(
             self.range_resolution,
             bw,
             bw,
             self.monopulse_slope,
-            self.reference_range,
-            self.reference_sigma_range,
-        )
+            link,
+        )?)
     }
 
     /// Time from the start to touchdown, s.
@@ -242,11 +259,11 @@ impl RbsLandingConfig {
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSeries {
     /// Position error (estimate − truth) per filter, per step, per axis.
-    pub pos_err: [Vec<[f64; 3]>; 5],
+    pub pos_err: [Vec<[f64; 3]>; FILTERS],
     /// NEES (6 states) per filter, per step.
-    pub nees: [Vec<f64>; 5],
-    /// `R̂` diagonal (x, y, z variances) per adaptive filter, per step.
-    pub r_hat_diag: [Vec<[f64; 3]>; 3],
+    pub nees: [Vec<f64>; FILTERS],
+    /// `R̂` diagonal (x, y, z variances) per adaptive filter ([`ADAPTIVE`] order), per step.
+    pub r_hat_diag: [Vec<[f64; 3]>; 4],
     /// The diagonal of the true Cartesian noise covariance of each plot.
     pub r_true_diag: Vec<[f64; 3]>,
     /// The diagonal of the Cartesian noise covariance the filters assume.
@@ -309,11 +326,12 @@ pub fn simulate_run(
     let g0 = Gaussian::new(x0, p0)?;
     let sph0 = SphericalPlot::from_cartesian(&pos_of(&x0))?;
     let frame0 = crate::decoupled_plot::aligned_frame(sph0.azimuth(), sph0.elevation());
-    let r0 = ConvertedPlot::from_spherical(&sph0, &model.sigmas_at_range(sph0.range())?)?
+    let r0 = ConvertedPlot::from_spherical(&sph0, &model.sigmas_at_range(sph0.range()))?
         .cartesian_noise();
 
     let cdkf = DecoupledFilter::new(config.accel_sd, config.frame_handling)?;
     let warmups = [
+        Warmup::InnovationScale,
         Warmup::Constant,
         Warmup::Growing,
         Warmup::Innovation {
@@ -326,7 +344,12 @@ pub fn simulate_run(
             AdaptiveRConfig::new(config.window, config.r_floor, w)?,
         ))
     };
-    let adkfs = [make(warmups[0])?, make(warmups[1])?, make(warmups[2])?];
+    let adkfs = [
+        make(warmups[0])?,
+        make(warmups[1])?,
+        make(warmups[2])?,
+        make(warmups[3])?,
+    ];
     let kf = CoupledCvFilter::new(config.accel_sd)?;
 
     let dec0 = DecoupledEstimate::from_gaussian(&g0, &frame0)?;
@@ -335,7 +358,7 @@ pub fn simulate_run(
         estimate: dec0,
         r: REstimate::new(r0)?,
     };
-    let mut ad_states = [ad0; 3];
+    let mut ad_states = [ad0; 4];
     let mut kf_state = g0;
 
     let mut out = RunSeries {
@@ -359,15 +382,20 @@ pub fn simulate_run(
         let true_sph = SphericalPlot::from_cartesian(&pos_of(&truth))?;
         let unit: f64 = StandardNormal.sample(&mut rng);
         let snr_db_offset = fluct * unit;
-        let snr = model.mean_snr(true_sph.range())? * 10f64.powf(snr_db_offset / 10.0);
-        let s = model.sigmas_at_snr(snr)?.scaled(noise_scale)?;
+        let snr = model.link().snr_at(true_sph.range()) * 10f64.powf(snr_db_offset / 10.0);
+        let s1 = model.sigmas_at_snr(snr)?;
+        let s = Sigmas::new(
+            s1.range() * noise_scale,
+            s1.azimuth() * noise_scale,
+            s1.elevation() * noise_scale,
+        )?;
         let e = normal3(&mut rng);
         let meas = SphericalPlot::new(
-            (true_sph.range() + s.range * e[0]).max(1e-3),
-            true_sph.azimuth() + s.azimuth * e[1],
-            true_sph.elevation() + s.elevation * e[2],
+            (true_sph.range() + s.range() * e[0]).max(1e-3),
+            true_sph.azimuth() + s.azimuth() * e[1],
+            true_sph.elevation() + s.elevation() * e[2],
         )?;
-        let assumed: SphericalSigmas = model.sigmas_at_range(meas.range())?;
+        let assumed = model.sigmas_at_range(meas.range());
         let plot = ConvertedPlot::from_spherical(&meas, &assumed)?;
         let true_plot = ConvertedPlot::from_spherical(&true_sph, &s)?;
         out.r_true_diag.push(diag3(&true_plot.cartesian_noise()));
@@ -427,11 +455,11 @@ pub struct McSummary {
     /// Plot times, s.
     pub times: Vec<f64>,
     /// RMS position error per filter ([`FilterKind::index`]), per time, per axis (m).
-    pub rms: [Vec<[f64; 3]>; 5],
+    pub rms: [Vec<[f64; 3]>; FILTERS],
     /// ANEES per filter, per time: the mean NEES over runs divided by 6.
-    pub anees: [Vec<f64>; 5],
-    /// `√(mean R̂ᵢᵢ)` per adaptive filter (ADKF, ADKF-grow, ADKF-innov), per time, per axis (m).
-    pub sigma_hat: [Vec<[f64; 3]>; 3],
+    pub anees: [Vec<f64>; FILTERS],
+    /// `√(mean R̂ᵢᵢ)` per adaptive filter ([`ADAPTIVE`] order), per time, per axis (m).
+    pub sigma_hat: [Vec<[f64; 3]>; 4],
     /// `√(mean Rᵢᵢ)` of the true plot noise (SNR fluctuation included), per time, per axis (m).
     pub sigma_true: Vec<[f64; 3]>,
     /// `√(mean Rᵢᵢ)` the filters assume, per time, per axis (m).
@@ -514,6 +542,7 @@ impl McSummary {
             mean_sqrt(&|r, k| r.r_hat_diag[0][k]),
             mean_sqrt(&|r, k| r.r_hat_diag[1][k]),
             mean_sqrt(&|r, k| r.r_hat_diag[2][k]),
+            mean_sqrt(&|r, k| r.r_hat_diag[3][k]),
         ];
         let mut sample_ratio = [[0.0; 3]; 2];
         for r in runs {
@@ -569,7 +598,7 @@ impl McSummary {
     }
 
     /// The time average over `from..to` of `σ̂ / σ_true` on `axis` for the
-    /// adaptive filter `adaptive` (0 = ADKF, 1 = ADKF-grow, 2 = ADKF-innov).
+    /// adaptive filter `adaptive` (index in [`ADAPTIVE`]: 0 = ADKF, 1 = ADKF-paper).
     #[must_use]
     pub fn sigma_ratio(&self, adaptive: usize, axis: usize, from: f64, to: f64) -> f64 {
         let Some(h) = self.sigma_hat.get(adaptive) else {

@@ -35,7 +35,7 @@
 
 use argus_core_math::{Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector};
 
-use crate::maneuver_error::ManeuverError;
+use crate::error::AdaptiveError;
 
 /// Longest onset window accepted (`M`), to bound memory and per-step cost.
 pub const MAX_WINDOW: usize = 10_000;
@@ -63,30 +63,30 @@ impl GlrtConfig {
     /// and the kind of change.
     ///
     /// # Errors
-    /// [`ManeuverError::InvalidWindow`] when `N > M` or `M > MAX_WINDOW`;
-    /// [`ManeuverError::InvalidParameter`] when `η` is not finite and positive.
+    /// [`AdaptiveError::InvalidWindow`] when `N > M` or `M > MAX_WINDOW`;
+    /// [`AdaptiveError::InvalidParameter`] when `η` is not finite and positive.
     pub fn new(
         max_age: usize,
         min_age: usize,
         threshold: f64,
         kind: FailureKind,
-    ) -> Result<Self, ManeuverError> {
+    ) -> Result<Self, AdaptiveError> {
         if min_age > max_age {
-            return Err(ManeuverError::InvalidWindow {
+            return Err(AdaptiveError::InvalidWindow {
                 max_age,
                 min_age,
                 reason: "the shortest onset age N exceeds the longest M",
             });
         }
         if max_age > MAX_WINDOW {
-            return Err(ManeuverError::InvalidWindow {
+            return Err(AdaptiveError::InvalidWindow {
                 max_age,
                 min_age,
                 reason: "M exceeds MAX_WINDOW",
             });
         }
         if !(threshold.is_finite() && threshold > 0.0) {
-            return Err(ManeuverError::InvalidParameter {
+            return Err(AdaptiveError::InvalidParameter {
                 what: "GLRT threshold eta",
                 value: threshold,
                 reason: "must be finite and positive",
@@ -150,8 +150,8 @@ impl<const N: usize, const M: usize, const P: usize> StepLinearization<'_, N, M,
     /// Checks that every matrix and the residual are finite.
     ///
     /// # Errors
-    /// [`ManeuverError::Math`] naming the first non-finite quantity.
-    pub fn validate(&self) -> Result<(), ManeuverError> {
+    /// [`AdaptiveError::Math`] naming the first non-finite quantity.
+    pub fn validate(&self) -> Result<(), AdaptiveError> {
         check_finite_matrix(self.phi, "transition Phi")?;
         check_finite_matrix(self.gamma, "input gain Gamma")?;
         check_finite_matrix(self.h, "measurement Jacobian H")?;
@@ -278,8 +278,8 @@ impl<const N: usize, const M: usize, const P: usize> Glrt<N, M, P> {
     /// acceleration seen through bearings only), where `C⁻¹ d` is unbounded in that part.
     ///
     /// # Errors
-    /// [`ManeuverError::Math`] when `Λ₀` is non-finite, not symmetric or not positive definite.
-    pub fn with_input_prior(mut self, info: Matrix<P, P>) -> Result<Self, ManeuverError> {
+    /// [`AdaptiveError::Math`] when `Λ₀` is non-finite, not symmetric or not positive definite.
+    pub fn with_input_prior(mut self, info: Matrix<P, P>) -> Result<Self, AdaptiveError> {
         check_finite_matrix(&info, "GLRT input prior information")?;
         SpdFactor::new(&info, "GLRT input prior information")?;
         self.prior_info = info;
@@ -326,11 +326,11 @@ impl<const N: usize, const M: usize, const P: usize> Glrt<N, M, P> {
     /// yet identifiable, e.g. a 2-D input from one bearing) is carried, not tested.
     ///
     /// # Errors
-    /// [`ManeuverError::Math`] when a step quantity is non-finite.
+    /// [`AdaptiveError::Math`] when a step quantity is non-finite.
     pub fn step(
         &mut self,
         lin: &StepLinearization<'_, N, M, P>,
-    ) -> Result<GlrtOutcome<N, P>, ManeuverError> {
+    ) -> Result<GlrtOutcome<N, P>, AdaptiveError> {
         lin.validate()?;
         let kind = self.config.kind;
         self.next.clear();

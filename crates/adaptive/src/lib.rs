@@ -5,9 +5,18 @@
 //!   ([`AdaptiveDecoupledFilter`], the ADKF, with [`REstimate`] and the corrected
 //!   post-fit sample [`post_fit_sample`]), and the full coupled 6-state Kalman
 //!   filter [`CoupledCvFilter`] as the accuracy reference.
-//! - The radar-beacon plot model (seed 003 eqs 6–12, corrected):
-//!   [`SphericalPlot`], [`RbsNoiseModel`], [`ConvertedPlot`].
-//! - [`decoupled_scenario`]: the "rbs-landing" Monte Carlo experiment of seed 003.
+//! - The radar-beacon plots (seed 003 eqs 9–12, corrected): [`SphericalPlot`],
+//!   [`ConvertedPlot`]; their SNR-driven accuracy (eqs 6–8) is `argus_sensors`'
+//!   [`SnrNoise`](argus_sensors::SnrNoise).
+//! - GLRT maneuver detection, MRAS input estimation and the adaptive filter of
+//!   seed 001 ([`glrt`], [`mras`], [`maneuver`]).
+//! - One error type, [`AdaptiveError`].
+//!
+//! # Features
+//! - `sim` (off by default): the Monte Carlo experiments — `decoupled_scenario`
+//!   ("rbs-landing", seed 003), `maneuver::maneuver_1d` and `maneuver::drag_bearing`
+//!   (seed 001). It brings `rand`, `rand_distr` and `rand_chacha`; the filters
+//!   themselves do not need it.
 //!
 //! State layout: `[x, vx, y, vy, z, vz]`, SI units, azimuth from +x counter-clockwise.
 //!
@@ -15,14 +24,17 @@
 //! ```
 //! use argus_adaptive::{
 //!     AdaptiveDecoupledFilter, AdaptiveRConfig, AdaptiveState, ConvertedPlot, DecoupledEstimate,
-//!     DecoupledFilter, FrameHandling, REstimate, RbsNoiseModel, SphericalPlot, Warmup,
+//!     DecoupledFilter, FrameHandling, REstimate, SphericalPlot, Warmup,
 //! };
 //! use argus_core_math::{Matrix, Vector};
+//! use argus_sensors::SnrNoise;
 //!
-//! let radar = RbsNoiseModel::calibrated(149.9, 2f64.to_radians(), 2f64.to_radians(), 1.6, 3006.0, 2.97)?;
+//! // Seed 003 eqs 6–8: Δr = 149.9 m, 2° beams, k_m = 1.6, σr = 2.97 m at 3006 m.
+//! let link = SnrNoise::link_for_range_sigma(149.9, 2.97, 3006.0)?;
+//! let radar = SnrNoise::new(149.9, 2f64.to_radians(), 2f64.to_radians(), 1.6, link)?;
 //! let truth = Vector::<3>::new(-3000.0, -100.0, 157.2);
 //! let sph = SphericalPlot::from_cartesian(&truth)?;
-//! let plot = ConvertedPlot::from_spherical(&sph, &radar.sigmas_at_range(sph.range())?)?;
+//! let plot = ConvertedPlot::from_spherical(&sph, &radar.sigmas_at_range(sph.range()))?;
 //!
 //! let cdkf = DecoupledFilter::new(0.05, FrameHandling::Rotate)?;
 //! let adkf = AdaptiveDecoupledFilter::new(cdkf, AdaptiveRConfig::new(20, 1e-6, Warmup::Constant)?);
@@ -42,9 +54,10 @@
 mod adaptive_r;
 mod coupled;
 mod decoupled;
-mod decoupled_error;
 mod decoupled_plot;
+#[cfg(feature = "sim")]
 pub mod decoupled_scenario;
+mod error;
 
 pub use adaptive_r::{
     AdaptiveDecoupledFilter, AdaptiveRConfig, AdaptiveState, AdaptiveUpdate, REstimate, Warmup,
@@ -52,19 +65,15 @@ pub use adaptive_r::{
 };
 pub use coupled::CoupledCvFilter;
 pub use decoupled::{DecoupledEstimate, DecoupledFilter, DecoupledUpdate, FrameHandling};
-pub use decoupled_error::AdaptiveError;
-pub use decoupled_plot::{
-    ConvertedPlot, RbsNoiseModel, SphericalPlot, SphericalSigmas, aligned_frame,
-};
+pub use decoupled_plot::{ConvertedPlot, SphericalPlot, aligned_frame};
+pub use error::AdaptiveError;
 
 // Seed 001: GLRT maneuver detection, MRAS input estimation, the adaptive filter.
 pub mod glrt;
 pub mod maneuver;
-mod maneuver_error;
 pub mod mras;
 pub use glrt::{Detection, FailureKind, Glrt, GlrtConfig, GlrtOutcome, StepLinearization};
 pub use maneuver::{
     Compensation, InputLinearization, ManeuverFilter, ManeuverReport, ManeuverState, ModelInput,
 };
-pub use maneuver_error::ManeuverError;
 pub use mras::Mras;

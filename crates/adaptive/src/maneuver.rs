@@ -24,7 +24,9 @@
 //! - Lee & Kim (1987), seed 001, sections 3.2 and 4, eqs 3-11, 3-12, 4-3 to 4-7.
 //! - Willsky & Jones (1976), GLR detection of jumps in linear systems.
 
+#[cfg(feature = "sim")]
 pub mod drag_bearing;
+#[cfg(feature = "sim")]
 pub mod maneuver_1d;
 
 use argus_core_math::{Gaussian, Matrix, Vector};
@@ -32,8 +34,8 @@ use argus_filters::{GaussianFilter, Innovation, check_dt};
 use argus_motion_models::MotionModel;
 use argus_sensors::MeasurementModel;
 
+use crate::error::AdaptiveError;
 use crate::glrt::{Detection, FailureKind, Glrt, GlrtConfig, StepLinearization};
-use crate::maneuver_error::ManeuverError;
 use crate::mras::Mras;
 
 /// The linearisation the detector needs from the motion model: the transition
@@ -59,8 +61,8 @@ impl<Mo, const N: usize, const P: usize> ModelInput<Mo, N, P> {
     /// Wraps `model` with the input matrix `b`.
     ///
     /// # Errors
-    /// [`ManeuverError::Math`] when `b` is not finite.
-    pub fn new(model: Mo, b: Matrix<N, P>) -> Result<Self, ManeuverError> {
+    /// [`AdaptiveError::Math`] when `b` is not finite.
+    pub fn new(model: Mo, b: Matrix<N, P>) -> Result<Self, AdaptiveError> {
         argus_core_math::check_finite_matrix(&b, "input matrix B")?;
         Ok(Self { model, b })
     }
@@ -128,7 +130,7 @@ impl<const N: usize, const M: usize, const P: usize> ManeuverState<N, M, P> {
     ///
     /// # Errors
     /// As [`Glrt::with_input_prior`].
-    pub fn with_input_prior(mut self, info: Matrix<P, P>) -> Result<Self, ManeuverError> {
+    pub fn with_input_prior(mut self, info: Matrix<P, P>) -> Result<Self, AdaptiveError> {
         self.glrt = self.glrt.with_input_prior(info)?;
         Ok(self)
     }
@@ -217,8 +219,8 @@ impl<F, L> ManeuverFilter<F, L> {
     /// One predict–update–detect–correct step of `state` over `dt` with plot `z`.
     ///
     /// # Errors
-    /// [`ManeuverError::Filter`] for a bad `dt` (time going backwards or standing
-    /// still), a non-finite plot or a filter failure; [`ManeuverError::Math`] for a
+    /// [`AdaptiveError::Filter`] for a bad `dt` (time going backwards or standing
+    /// still), a non-finite plot or a filter failure; [`AdaptiveError::Math`] for a
     /// non-finite or non-PD result. `state` is unchanged on error.
     #[allow(non_snake_case)]
     pub fn step<const N: usize, const M: usize, const P: usize, Me>(
@@ -227,7 +229,7 @@ impl<F, L> ManeuverFilter<F, L> {
         dt: f64,
         meas: &Me,
         z: &Vector<M>,
-    ) -> Result<ManeuverReport<N, M, P>, ManeuverError>
+    ) -> Result<ManeuverReport<N, M, P>, AdaptiveError>
     where
         F: GaussianFilter<N>,
         L: InputLinearization<N, P>,

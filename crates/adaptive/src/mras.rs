@@ -33,8 +33,8 @@
 
 use argus_core_math::{Matrix, SpdFactor, Vector, symmetrize};
 
+use crate::error::AdaptiveError;
 use crate::glrt::{Detection, StepLinearization};
-use crate::maneuver_error::ManeuverError;
 
 /// The recursive input estimator (MRAS, discrete form). `N` state, `P` input.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,9 +68,9 @@ impl<const N: usize, const P: usize> Mras<N, P> {
     /// Starts from the initial guess `δû(0)` with gain `L(0)` (its covariance).
     ///
     /// # Errors
-    /// [`ManeuverError::Math`] when `L(0)` is not finite, symmetric and positive definite
+    /// [`AdaptiveError::Math`] when `L(0)` is not finite, symmetric and positive definite
     /// or `δû(0)` is not finite.
-    pub fn with_prior(u0: Vector<P>, l0: &Matrix<P, P>) -> Result<Self, ManeuverError> {
+    pub fn with_prior(u0: Vector<P>, l0: &Matrix<P, P>) -> Result<Self, AdaptiveError> {
         argus_core_math::check_finite_vector(&u0, "MRAS initial input u(0)")?;
         let f = SpdFactor::new(l0, "MRAS initial gain L(0)")?;
         let info = f.inverse();
@@ -86,11 +86,11 @@ impl<const N: usize, const P: usize> Mras<N, P> {
     /// singular (no prior information in some directions).
     ///
     /// # Errors
-    /// [`ManeuverError::Math`] when a value is non-finite.
+    /// [`AdaptiveError::Math`] when a value is non-finite.
     pub fn with_prior_information(
         u0: Vector<P>,
         info0: &Matrix<P, P>,
-    ) -> Result<Self, ManeuverError> {
+    ) -> Result<Self, AdaptiveError> {
         argus_core_math::check_finite_vector(&u0, "MRAS initial input u(0)")?;
         argus_core_math::check_finite_matrix(info0, "MRAS initial information L(0)^-1")?;
         let info = symmetrize(info0);
@@ -171,11 +171,11 @@ impl<const N: usize, const P: usize> Mras<N, P> {
     /// Processes one filter step, returning the updated estimator (`self` is unchanged).
     ///
     /// # Errors
-    /// [`ManeuverError::Math`] when a step quantity or the result is non-finite.
+    /// [`AdaptiveError::Math`] when a step quantity or the result is non-finite.
     pub fn step<const M: usize>(
         &self,
         lin: &StepLinearization<'_, N, M, P>,
-    ) -> Result<Self, ManeuverError> {
+    ) -> Result<Self, AdaptiveError> {
         lin.validate()?;
         let (g, dev, phi_f) = self.signature(lin);
         let sinv_g = lin.s_factor.solve_matrix(&g);

@@ -144,7 +144,7 @@ fn detection_delay_is_limited_by_the_signal_to_noise_of_the_first_half_second() 
 
 #[test]
 fn bad_maneuver_1d_inputs_are_rejected_with_the_field_named() {
-    use argus_adaptive::ManeuverError;
+    use argus_adaptive::AdaptiveError;
     let d = Maneuver1dConfig::default();
     let cases = [
         ("dt", Maneuver1dConfig { dt: -0.05, ..d }),
@@ -162,18 +162,18 @@ fn bad_maneuver_1d_inputs_are_rejected_with_the_field_named() {
     let run = simulate(&d, CASE1, 0).unwrap();
     for (field, cfg) in cases {
         match run_filters(&cfg, &run, 20.0, Compensation::Glrt) {
-            Err(ManeuverError::InvalidParameter { what, .. }) => assert_eq!(what, field),
+            Err(AdaptiveError::InvalidParameter { what, .. }) => assert_eq!(what, field),
             other => panic!("{field}: {other:?}"),
         }
     }
     assert!(matches!(
         run_filters(&d, &run, f64::NAN, Compensation::Glrt),
-        Err(ManeuverError::InvalidParameter { .. })
+        Err(AdaptiveError::InvalidParameter { .. })
     ));
     let window = Maneuver1dConfig { min_age: 30, ..d };
     assert!(matches!(
         run_filters(&window, &run, 20.0, Compensation::Glrt),
-        Err(ManeuverError::InvalidWindow { .. })
+        Err(AdaptiveError::InvalidWindow { .. })
     ));
     // Windows: inverted, overlapping, non-finite.
     for w in [
@@ -183,7 +183,7 @@ fn bad_maneuver_1d_inputs_are_rejected_with_the_field_named() {
     ] {
         assert!(matches!(
             simulate(&d, w, 0),
-            Err(ManeuverError::InvalidParameter { .. })
+            Err(AdaptiveError::InvalidParameter { .. })
         ));
     }
 }

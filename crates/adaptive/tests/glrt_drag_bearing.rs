@@ -4,7 +4,7 @@
 //! Scenario and every chosen parameter: `argus_adaptive::maneuver::drag_bearing` docs.
 #![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
 
-use argus_adaptive::ManeuverError;
+use argus_adaptive::AdaptiveError;
 use argus_adaptive::maneuver::drag_bearing::{
     DragBearingConfig, DragFilter, McSummary, simulate_run,
 };
@@ -131,14 +131,14 @@ fn bad_configurations_are_rejected_with_the_field_named() {
     ];
     for (field, cfg) in cases {
         match simulate_run(&cfg, 0) {
-            Err(ManeuverError::InvalidParameter { what, .. }) => assert_eq!(what, field),
+            Err(AdaptiveError::InvalidParameter { what, .. }) => assert_eq!(what, field),
             other => panic!("{field}: {other:?}"),
         }
     }
     let window = DragBearingConfig { min_age: 30, ..d };
     assert!(matches!(
         simulate_run(&window, 0),
-        Err(ManeuverError::InvalidWindow { .. })
+        Err(AdaptiveError::InvalidWindow { .. })
     ));
     assert!(McSummary::from_runs(&d, &[]).is_err());
 }

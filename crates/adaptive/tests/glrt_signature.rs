@@ -7,7 +7,7 @@
 mod glrt_common;
 
 use argus_adaptive::{
-    Compensation, FailureKind, Glrt, GlrtConfig, ManeuverError, ManeuverState, Mras,
+    AdaptiveError, Compensation, FailureKind, Glrt, GlrtConfig, ManeuverState, Mras,
     StepLinearization,
 };
 use argus_core_math::{Gaussian, Matrix, Vector, chi2_quantile};
@@ -282,7 +282,7 @@ fn mras_with_infinite_initial_gain_equals_the_glrt_ml_estimate() {
 fn bad_configuration_and_inputs_are_rejected_and_leave_state_unchanged() {
     assert!(matches!(
         GlrtConfig::new(5, 6, 20.0, FailureKind::Persistent),
-        Err(ManeuverError::InvalidWindow {
+        Err(AdaptiveError::InvalidWindow {
             max_age: 5,
             min_age: 6,
             ..
@@ -290,14 +290,14 @@ fn bad_configuration_and_inputs_are_rejected_and_leave_state_unchanged() {
     ));
     assert!(matches!(
         GlrtConfig::new(20, 5, f64::NAN, FailureKind::Persistent),
-        Err(ManeuverError::InvalidParameter {
+        Err(AdaptiveError::InvalidParameter {
             what: "GLRT threshold eta",
             ..
         })
     ));
     assert!(matches!(
         GlrtConfig::new(20, 5, -1.0, FailureKind::Jump),
-        Err(ManeuverError::InvalidParameter { .. })
+        Err(AdaptiveError::InvalidParameter { .. })
     ));
     assert!(
         GlrtConfig::new(
@@ -315,7 +315,7 @@ fn bad_configuration_and_inputs_are_rejected_and_leave_state_unchanged() {
         assert!(
             matches!(
                 Glrt::<2, 1, 1>::new(cfg1).with_input_prior(Matrix::<1, 1>::new(bad)),
-                Err(ManeuverError::Math(_))
+                Err(AdaptiveError::Math(_))
             ),
             "{bad}"
         );
@@ -351,12 +351,12 @@ fn bad_configuration_and_inputs_are_rejected_and_leave_state_unchanged() {
             .unwrap_err();
         match what {
             "NaN plot" | "infinite plot" => {
-                assert!(matches!(err, ManeuverError::Math(_)), "{what}: {err}")
+                assert!(matches!(err, AdaptiveError::Math(_)), "{what}: {err}")
             }
             _ => assert!(
                 matches!(
                     err,
-                    ManeuverError::Filter(FilterError::InvalidInterval { .. })
+                    AdaptiveError::Filter(FilterError::InvalidInterval { .. })
                 ),
                 "{what}: {err}"
             ),
@@ -382,7 +382,7 @@ fn bad_configuration_and_inputs_are_rejected_and_leave_state_unchanged() {
         .unwrap_err();
     assert!(matches!(
         err,
-        ManeuverError::Math(argus_core_math::MathError::NonFinite {
+        AdaptiveError::Math(argus_core_math::MathError::NonFinite {
             what: "transition Phi"
         })
     ));

@@ -24,6 +24,12 @@ fn cases() -> &'static [McSummary; 3] {
 
 fn report() {
     for (name, s) in ["SCN.1", "SCN.2", "SCN.3"].iter().zip(cases()) {
+        eprintln!(
+            "{name} ADKF sigma-hat/sigma after 20%: {:.3} / {:.3} / {:.3}",
+            s.sigma_ratio(0, 0, 0.2, 1.0),
+            s.sigma_ratio(0, 1, 0.2, 1.0),
+            s.sigma_ratio(0, 2, 0.2, 1.0),
+        );
         for kind in FilterKind::ALL {
             eprintln!(
                 "{name} {:<10} ANEES whole {:7.3} last20% {:7.3} | RMS x whole {:6.3} 20-100% {:6.3} last20% {:6.3}",
@@ -39,23 +45,12 @@ fn report() {
 }
 
 #[test]
-fn adkf_anees_is_near_one_over_the_final_20_percent() {
-    report();
-    // Issue 7 / paper Fig. 9: ADKF's ANEES stays in [0.5, 2] in all three cases. Holds in
-    // the final 20 % of the approach (SPEC 003 reports 0.8–0.9 there).
-    for (i, s) in cases().iter().enumerate() {
-        let a = s.time_avg_anees(FilterKind::Adkf, 0.8, 1.0);
-        assert!(
-            (0.5..=2.0).contains(&a),
-            "case {i}: ADKF final-20% ANEES {a}"
-        );
-    }
-}
-
-#[test]
-#[ignore = "does not hold: whole-approach ADKF ANEES is 2.6 (SCN.2) and 12 (SCN.3) with 40 runs; \
-            the estimate starts from the normal-case R and lags (SPEC 003 found 2.3 / 10)"]
 fn adkf_anees_is_near_one_over_the_whole_approach() {
+    report();
+    // Issue 7 / paper Fig. 9: ADKF's time-averaged ANEES inside [0.5, 2] in all three cases,
+    // over the whole approach (every plot time weighted alike). ADKF = the paper's estimator
+    // (eqs 28-32, sign corrected) with our start-up (R scaled from the innovations for the
+    // first L plots). 40 runs: the time average has a relative standard error of a few %.
     for (i, s) in cases().iter().enumerate() {
         let a = s.time_avg_anees(FilterKind::Adkf, 0.0, 1.0);
         assert!(
@@ -63,6 +58,33 @@ fn adkf_anees_is_near_one_over_the_whole_approach() {
             "case {i}: ADKF whole-approach ANEES {a}"
         );
     }
+}
+
+#[test]
+fn adkf_anees_is_near_one_over_the_final_20_percent() {
+    // After convergence both start-ups give the same filter (SPEC 003: 0.8-0.9 there).
+    for (i, s) in cases().iter().enumerate() {
+        for kind in [FilterKind::Adkf, FilterKind::AdkfPaper] {
+            let a = s.time_avg_anees(kind, 0.8, 1.0);
+            assert!(
+                (0.5..=2.0).contains(&a),
+                "case {i}: {} final-20% ANEES {a}",
+                kind.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn the_printed_start_up_is_what_fails_over_the_whole_approach() {
+    // The printed start-up (from the assumed R, weight 1/L) is far outside [0.5, 2] in
+    // SCN.3 over the whole approach (SPEC 003's re-implementation: ≈ 10; ours ≈ 12-14), and our
+    // start-up must remove most of that excess: at least a factor 3 lower.
+    let s = &cases()[2];
+    let paper = s.time_avg_anees(FilterKind::AdkfPaper, 0.0, 1.0);
+    let ours = s.time_avg_anees(FilterKind::Adkf, 0.0, 1.0);
+    assert!(paper > 5.0, "printed start-up, SCN.3: {paper}");
+    assert!(ours * 3.0 < paper, "ours {ours} vs printed {paper}");
 }
 
 #[test]
@@ -76,21 +98,9 @@ fn cdkf_is_inconsistent_with_ten_times_the_noise() {
 }
 
 #[test]
-fn adkf_x_rms_beats_cdkf_after_convergence() {
-    // Paper Figs. 2 and 5: ADKF's X-axis error below CDKF's in the degraded cases.
-    // Checked over the final 20 % (after R̂ has converged).
-    for i in [1, 2] {
-        let s = &cases()[i];
-        let a = s.time_rms(FilterKind::Adkf, 0, 0.8, 1.0);
-        let c = s.time_rms(FilterKind::Cdkf, 0, 0.8, 1.0);
-        assert!(a < c, "case {i}: ADKF {a} vs CDKF {c}");
-    }
-}
-
-#[test]
-#[ignore = "does not hold: over the whole approach ADKF's X RMS is 4.5 m vs CDKF 3.6 m (SCN.2) \
-            and 11.7 m vs 7.2 m (SCN.3): the ADKF's early transient dominates"]
 fn adkf_x_rms_beats_cdkf_over_the_whole_approach() {
+    // Paper Figs. 2 and 5 / issue 7: ADKF's X-axis RMS below CDKF's in SCN.2 and SCN.3,
+    // over the whole approach (√ of the time mean of the MC mean square).
     for i in [1, 2] {
         let s = &cases()[i];
         let a = s.time_rms(FilterKind::Adkf, 0, 0.0, 1.0);

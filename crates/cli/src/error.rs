@@ -77,9 +77,6 @@ pub(crate) enum CliError {
     /// The adaptive-R decoupled filter rejected a value.
     #[error("adaptive filter: {0}")]
     Adaptive(#[from] argus_adaptive::AdaptiveError),
-    /// The maneuver detector or input estimator rejected a value.
-    #[error("maneuver detection: {0}")]
-    Maneuver(#[from] argus_adaptive::ManeuverError),
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {

@@ -42,9 +42,9 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
+use crate::error::AdaptiveError;
 use crate::glrt::{FailureKind, GlrtConfig};
 use crate::maneuver::{Compensation, ManeuverFilter, ManeuverState, ModelInput};
-use crate::maneuver_error::ManeuverError;
 
 /// Feet to metres.
 pub const FT: f64 = 0.3048;
@@ -105,11 +105,11 @@ impl Default for DragBearingConfig {
     }
 }
 
-fn positive(what: &'static str, value: f64) -> Result<f64, ManeuverError> {
+fn positive(what: &'static str, value: f64) -> Result<f64, AdaptiveError> {
     if value.is_finite() && value > 0.0 {
         Ok(value)
     } else {
-        Err(ManeuverError::InvalidParameter {
+        Err(AdaptiveError::InvalidParameter {
             what,
             value,
             reason: "must be finite and positive",
@@ -121,11 +121,11 @@ impl DragBearingConfig {
     /// Checks every field.
     ///
     /// # Errors
-    /// [`ManeuverError::InvalidParameter`] naming the first bad field (non-finite, not
+    /// [`AdaptiveError::InvalidParameter`] naming the first bad field (non-finite, not
     /// positive, the turn outside the run, fewer than one plot, zero substeps);
-    /// [`ManeuverError::InvalidWindow`] / [`ManeuverError::InvalidParameter`] for the GLRT
+    /// [`AdaptiveError::InvalidWindow`] / [`AdaptiveError::InvalidParameter`] for the GLRT
     /// window and threshold.
-    pub fn validate(&self) -> Result<(), ManeuverError> {
+    pub fn validate(&self) -> Result<(), AdaptiveError> {
         positive("dt", self.dt)?;
         positive("duration", self.duration)?;
         positive("sigma_bearing", self.sigma_bearing)?;
@@ -134,7 +134,7 @@ impl DragBearingConfig {
         positive("sigma_input", self.sigma_input)?;
         for (what, v) in [("alpha", self.alpha), ("q", self.q)] {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(ManeuverError::InvalidParameter {
+                return Err(AdaptiveError::InvalidParameter {
                     what,
                     value: v,
                     reason: "must be finite and non-negative",
@@ -142,21 +142,21 @@ impl DragBearingConfig {
             }
         }
         if !(self.turn_time.is_finite() && self.turn_time > 0.0 && self.turn_time < self.duration) {
-            return Err(ManeuverError::InvalidParameter {
+            return Err(AdaptiveError::InvalidParameter {
                 what: "turn_time",
                 value: self.turn_time,
                 reason: "must lie inside (0, duration)",
             });
         }
         if self.steps() == 0 || self.steps() > 1_000_000 {
-            return Err(ManeuverError::InvalidParameter {
+            return Err(AdaptiveError::InvalidParameter {
                 what: "duration / dt",
                 value: self.duration / self.dt,
                 reason: "must give between 1 and 1e6 plots",
             });
         }
         if self.substeps == 0 || self.substeps > argus_filters::MAX_SUBSTEPS {
-            return Err(ManeuverError::InvalidParameter {
+            return Err(AdaptiveError::InvalidParameter {
                 what: "substeps",
                 value: self.substeps as f64,
                 reason: "must be between 1 and MAX_SUBSTEPS",
@@ -181,7 +181,7 @@ impl DragBearingConfig {
     ///
     /// # Errors
     /// As [`GlrtConfig::new`].
-    pub fn glrt(&self) -> Result<GlrtConfig, ManeuverError> {
+    pub fn glrt(&self) -> Result<GlrtConfig, AdaptiveError> {
         GlrtConfig::new(
             self.max_age,
             self.min_age,
@@ -231,16 +231,16 @@ impl DragBearingConfig {
     /// The filters' motion model: drag α, noise `q`, known input `u₀`.
     ///
     /// # Errors
-    /// [`ManeuverError::Motion`] for a bad α or `q`.
-    pub fn filter_model(&self) -> Result<QuadraticDrag, ManeuverError> {
+    /// [`AdaptiveError::Motion`] for a bad α or `q`.
+    pub fn filter_model(&self) -> Result<QuadraticDrag, AdaptiveError> {
         Ok(QuadraticDrag::new(self.alpha, self.q)?.with_input(self.thrust_before())?)
     }
 
     /// The bearing sensor at the origin.
     ///
     /// # Errors
-    /// [`ManeuverError::Sensor`] for a bad σ.
-    pub fn sensor(&self) -> Result<Bearing2D<4>, ManeuverError> {
+    /// [`AdaptiveError::Sensor`] for a bad σ.
+    pub fn sensor(&self) -> Result<Bearing2D<4>, AdaptiveError> {
         Ok(Bearing2D::cv([0.0, 0.0], self.sigma_bearing)?)
     }
 }
@@ -337,7 +337,7 @@ fn inner_filter(
     cfg: &DragBearingConfig,
     model: QuadraticDrag,
     second_order: bool,
-) -> Result<CdEkf<QuadraticDrag>, ManeuverError> {
+) -> Result<CdEkf<QuadraticDrag>, AdaptiveError> {
     Ok(CdEkf::new(model, cfg.substeps)?
         .with_drift_correction(second_order)
         .with_second_order_update(second_order))
@@ -355,7 +355,7 @@ struct Simulated {
 fn simulate_truth(
     cfg: &DragBearingConfig,
     rng: &mut ChaCha8Rng,
-) -> Result<Simulated, ManeuverError> {
+) -> Result<Simulated, AdaptiveError> {
     let mut n = || -> f64 { StandardNormal.sample(rng) };
     let before = QuadraticDrag::new(cfg.alpha, 0.0)?.with_input(cfg.thrust_before())?;
     let after = QuadraticDrag::new(cfg.alpha, 0.0)?.with_input(cfg.thrust_after())?;
@@ -404,8 +404,8 @@ fn simulate_truth(
 /// the initial state): the reference trajectory of Figs. 5–7.
 ///
 /// # Errors
-/// [`ManeuverError`] for an invalid configuration.
-pub fn reference_trajectory(cfg: &DragBearingConfig) -> Result<Vec<Vector<4>>, ManeuverError> {
+/// [`AdaptiveError`] for an invalid configuration.
+pub fn reference_trajectory(cfg: &DragBearingConfig) -> Result<Vec<Vector<4>>, AdaptiveError> {
     cfg.validate()?;
     let quiet = DragBearingConfig { q: 0.0, ..*cfg };
     let sim = simulate_truth(&quiet, &mut ChaCha8Rng::seed_from_u64(0))?;
@@ -423,8 +423,8 @@ pub fn reference_trajectory(cfg: &DragBearingConfig) -> Result<Vec<Vector<4>>, M
 /// estimate is kept if even the prediction fails); the run itself does not fail.
 ///
 /// # Errors
-/// [`ManeuverError`] for an invalid configuration or a non-finite simulated state.
-pub fn simulate_run(cfg: &DragBearingConfig, seed: u64) -> Result<DragRun, ManeuverError> {
+/// [`AdaptiveError`] for an invalid configuration or a non-finite simulated state.
+pub fn simulate_run(cfg: &DragBearingConfig, seed: u64) -> Result<DragRun, AdaptiveError> {
     cfg.validate()?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let Simulated {
@@ -539,9 +539,9 @@ impl McSummary {
     /// Reduces `runs` (all from the same configuration `cfg`).
     ///
     /// # Errors
-    /// [`ManeuverError::InvalidParameter`] when `runs` is empty or the runs differ in length.
-    pub fn from_runs(cfg: &DragBearingConfig, runs: &[DragRun]) -> Result<Self, ManeuverError> {
-        let first = runs.first().ok_or(ManeuverError::InvalidParameter {
+    /// [`AdaptiveError::InvalidParameter`] when `runs` is empty or the runs differ in length.
+    pub fn from_runs(cfg: &DragBearingConfig, runs: &[DragRun]) -> Result<Self, AdaptiveError> {
+        let first = runs.first().ok_or(AdaptiveError::InvalidParameter {
             what: "runs",
             value: 0.0,
             reason: "no run to reduce",
@@ -551,7 +551,7 @@ impl McSummary {
             .iter()
             .any(|r| r.times.len() != len || r.estimates.iter().any(|e| e.len() != len))
         {
-            return Err(ManeuverError::InvalidParameter {
+            return Err(AdaptiveError::InvalidParameter {
                 what: "runs",
                 value: runs.len() as f64,
                 reason: "runs of different lengths",

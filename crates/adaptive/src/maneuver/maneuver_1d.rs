@@ -25,9 +25,9 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
+use crate::error::AdaptiveError;
 use crate::glrt::{FailureKind, GlrtConfig};
 use crate::maneuver::{Compensation, ManeuverFilter, ManeuverState, ModelInput};
-use crate::maneuver_error::ManeuverError;
 
 /// Case 1: acceleration on 2.0–6.0 s.
 pub const CASE1: &[(f64, f64)] = &[(2.0, 6.0)];
@@ -80,10 +80,10 @@ impl Maneuver1dConfig {
     /// Checks every field and that `η` is a valid threshold.
     ///
     /// # Errors
-    /// [`ManeuverError::InvalidParameter`] naming the first bad field;
-    /// [`ManeuverError::InvalidWindow`] for `N > M`.
-    pub fn validate(&self, eta: f64) -> Result<(), ManeuverError> {
-        let bad = |what, value, reason| ManeuverError::InvalidParameter {
+    /// [`AdaptiveError::InvalidParameter`] naming the first bad field;
+    /// [`AdaptiveError::InvalidWindow`] for `N > M`.
+    pub fn validate(&self, eta: f64) -> Result<(), AdaptiveError> {
+        let bad = |what, value, reason| AdaptiveError::InvalidParameter {
             what,
             value,
             reason,
@@ -112,7 +112,7 @@ impl Maneuver1dConfig {
     ///
     /// # Errors
     /// As [`GlrtConfig::new`].
-    pub fn glrt(&self, eta: f64) -> Result<GlrtConfig, ManeuverError> {
+    pub fn glrt(&self, eta: f64) -> Result<GlrtConfig, AdaptiveError> {
         GlrtConfig::new(self.max_age, self.min_age, eta, FailureKind::Persistent)
     }
 
@@ -126,12 +126,12 @@ impl Maneuver1dConfig {
 /// Checks a set of acceleration windows: finite, `on < off`, increasing, not overlapping.
 ///
 /// # Errors
-/// [`ManeuverError::InvalidParameter`] naming the bad bound.
-pub fn validate_windows(windows: &[(f64, f64)]) -> Result<(), ManeuverError> {
+/// [`AdaptiveError::InvalidParameter`] naming the bad bound.
+pub fn validate_windows(windows: &[(f64, f64)]) -> Result<(), AdaptiveError> {
     let mut last = f64::NEG_INFINITY;
     for &(on, off) in windows {
         if !(on.is_finite() && off.is_finite() && on < off && on >= last) {
-            return Err(ManeuverError::InvalidParameter {
+            return Err(AdaptiveError::InvalidParameter {
                 what: "maneuver window (on, off)",
                 value: on,
                 reason: "bounds must be finite, on < off, windows increasing and disjoint",
@@ -171,12 +171,12 @@ pub struct Run1d {
 /// Simulates run `seed` (see the module docs for the draw order).
 ///
 /// # Errors
-/// [`ManeuverError`] for a bad configuration or windows.
+/// [`AdaptiveError`] for a bad configuration or windows.
 pub fn simulate(
     cfg: &Maneuver1dConfig,
     windows: &[(f64, f64)],
     seed: u64,
-) -> Result<Run1d, ManeuverError> {
+) -> Result<Run1d, AdaptiveError> {
     validate_windows(windows)?;
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut n = || -> f64 { StandardNormal.sample(&mut rng) };
@@ -219,13 +219,13 @@ pub struct Outcome1d {
 /// Runs the plain KF and the adaptive filter (threshold `eta`, `compensation`) on `run`.
 ///
 /// # Errors
-/// [`ManeuverError`] for a bad configuration or a failed filter step.
+/// [`AdaptiveError`] for a bad configuration or a failed filter step.
 pub fn run_filters(
     cfg: &Maneuver1dConfig,
     run: &Run1d,
     eta: f64,
     compensation: Compensation,
-) -> Result<Outcome1d, ManeuverError> {
+) -> Result<Outcome1d, AdaptiveError> {
     cfg.validate(eta)?;
     let model = Cv1D::new(CvNoise::VelocityPerStep { q: cfg.q })?;
     let kf = Kf::new(model);
@@ -414,7 +414,7 @@ pub fn monte_carlo(
     eta: f64,
     compensation: Compensation,
     runs: std::ops::Range<u64>,
-) -> Result<Stats1d, ManeuverError> {
+) -> Result<Stats1d, AdaptiveError> {
     let outcomes = runs
         .map(|s| simulate(cfg, windows, s).and_then(|r| run_filters(cfg, &r, eta, compensation)))
         .collect::<Result<Vec<_>, _>>()?;

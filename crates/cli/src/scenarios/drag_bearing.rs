@@ -10,7 +10,7 @@
 //! uses `ChaCha8Rng::seed_from_u64((s − 1)·2³² + i)`, so the default seed 1 reproduces
 //! the tests' runs. Results: `docs/papers/001-drag-bearing.md`.
 
-use argus_adaptive::ManeuverError;
+use argus_adaptive::AdaptiveError;
 use argus_adaptive::maneuver::drag_bearing::{
     DragBearingConfig, DragFilter, DragRun, McSummary, reference_trajectory, simulate_run,
 };
@@ -27,7 +27,7 @@ use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
 /// The scenario.
 pub(crate) struct DragBearing;
 
-fn err(e: ManeuverError) -> CliError {
+fn err(e: AdaptiveError) -> CliError {
     CliError::Usage(format!("drag-bearing: {e}"))
 }
 

@@ -9,8 +9,8 @@
 //! draws from `ChaCha8Rng::seed_from_u64((s − 1)·2³² + i)`, so the default seed 1
 //! reproduces the test suite's runs. Parameters and results: `docs/papers/001-maneuver.md`.
 
+use argus_adaptive::AdaptiveError;
 use argus_adaptive::Compensation;
-use argus_adaptive::ManeuverError;
 use argus_adaptive::maneuver::maneuver_1d::{
     CASE1, CASE2, Maneuver1dConfig, Outcome1d, Stats1d, quantile, run_filters, simulate,
 };
@@ -34,7 +34,7 @@ const COMPS: [(&str, Compensation); 2] = [
     ("glrt_mras", Compensation::GlrtMras),
 ];
 
-fn err(e: ManeuverError) -> CliError {
+fn err(e: AdaptiveError) -> CliError {
     CliError::Usage(format!("maneuver-1d: {e}"))
 }
 

@@ -10,7 +10,7 @@
 use argus_adaptive::AdaptiveError;
 use argus_adaptive::FrameHandling;
 use argus_adaptive::decoupled_scenario::{
-    FilterKind, McSummary, RbsLandingConfig, RunSeries, simulate_run,
+    FILTERS, FilterKind, McSummary, RbsLandingConfig, RunSeries, simulate_run,
 };
 use argus_core_math::Vector;
 use argus_sim::{
@@ -28,7 +28,8 @@ pub(crate) struct RbsLanding;
 /// The three cases: plot noise × 1, 5, 10 (the filters always assume × 1).
 const CASES: [(&str, f64); 3] = [("scn1", 1.0), ("scn2", 5.0), ("scn3", 10.0)];
 
-fn adaptive_err(e: AdaptiveError) -> CliError {
+/// A configuration the library rejects is a usage error (a `--set` value).
+fn usage(e: AdaptiveError) -> CliError {
     CliError::Usage(format!("rbs-landing: {e}"))
 }
 
@@ -52,7 +53,7 @@ fn config(p: &Params) -> Result<RbsLandingConfig, CliError> {
         },
         ..RbsLandingConfig::default()
     };
-    c.validate().map_err(adaptive_err)?;
+    c.validate().map_err(usage)?;
     Ok(c)
 }
 
@@ -150,15 +151,15 @@ impl Scenario for RbsLanding {
         // SNR-driven model of seed 003 eqs (6)-(8) (see the docs).
         let s = c
             .noise_model()
-            .and_then(|m| m.sigmas_at_range(c.reference_range))
-            .map_err(adaptive_err)?;
+            .map_err(usage)?
+            .sigmas_at_range(c.reference_range);
         let radar = SensorSpec::new(
             SensorId(1),
             Vector::<3>::zeros(),
             SensorKind::Spherical {
-                sigma_range: s.range,
-                sigma_azimuth: s.azimuth,
-                sigma_elevation: s.elevation,
+                sigma_range: s.range(),
+                sigma_azimuth: s.azimuth(),
+                sigma_elevation: s.elevation(),
             },
             Schedule::Periodic {
                 period: c.dt,
@@ -183,9 +184,8 @@ impl Scenario for RbsLanding {
                     ctx.progress.tick();
                     out
                 })
-                .collect::<Result<_, _>>()
-                .map_err(adaptive_err)?;
-            summaries.push(McSummary::from_runs(&series, c.dt).map_err(adaptive_err)?);
+                .collect::<Result<_, _>>()?;
+            summaries.push(McSummary::from_runs(&series, c.dt)?);
         }
         ctx.progress.finish();
 
@@ -200,61 +200,66 @@ impl Scenario for RbsLanding {
         for (((case, _), s), (_, spec_c, spec_a)) in CASES.iter().zip(&summaries).zip(spec_anees) {
             for kind in FilterKind::ALL {
                 let k = kind.name().to_lowercase().replace('-', "_");
-                let (paper, note) = match kind {
-                    FilterKind::Cdkf => (
-                        Some("grows with the noise (Fig. 8)"),
-                        format!("whole approach; SPEC 003 re-implementation {spec_c}"),
-                    ),
-                    FilterKind::Adkf => (
-                        Some("near 1 in all cases (Fig. 9)"),
-                        format!("whole approach; SPEC 003 re-implementation {spec_a}"),
-                    ),
-                    _ => (None, "whole approach (not in the paper)".to_owned()),
-                };
-                rows.push(Row::with_text(
+                let name = kind.name();
+                let anees = Row::new(
                     format!("{case}_{k}_anees"),
-                    format!("{case} {} ANEES", kind.name()),
-                    paper,
+                    format!("{case} {name} ANEES"),
                     s.time_avg_anees(kind, 0.0, 1.0),
                     "-",
-                    &note,
-                ));
-                rows.push(Row::with_text(
-                    format!("{case}_{k}_anees_last20"),
-                    format!("{case} {} ANEES, final 20%", kind.name()),
-                    None,
-                    s.time_avg_anees(kind, 0.8, 1.0),
-                    "-",
-                    "t in the final 20% of the approach",
-                ));
+                );
+                rows.push(match kind {
+                    FilterKind::Cdkf => anees
+                        .paper_text("grows with the noise (Fig. 8)")
+                        .note(format!("whole approach; SPEC 003 re-implementation {spec_c}")),
+                    FilterKind::Adkf => anees
+                        .paper_text("near 1 in all cases (Fig. 9)")
+                        .note("whole approach; our start-up: R scaled from the innovations for the first L plots"),
+                    FilterKind::AdkfPaper => anees
+                        .paper_text("near 1 in all cases (Fig. 9)")
+                        .note(format!("whole approach; start-up as printed; SPEC 003 re-implementation {spec_a}")),
+                    _ => anees.note("whole approach (not in the paper)"),
+                });
+                rows.push(
+                    Row::new(
+                        format!("{case}_{k}_anees_last20"),
+                        format!("{case} {name} ANEES, final 20%"),
+                        s.time_avg_anees(kind, 0.8, 1.0),
+                        "-",
+                    )
+                    .note("t in the final 20% of the approach"),
+                );
                 for (a, axis) in ["x", "y", "z"].iter().enumerate() {
-                    rows.push(Row::with_text(
-                        format!("{case}_{k}_rms_{axis}"),
-                        format!("{case} {} RMS {axis}", kind.name()),
-                        None,
-                        s.time_rms(kind, a, 0.0, 1.0),
-                        "m",
-                        "sqrt of the time mean of the MC mean square, whole approach",
-                    ));
-                    rows.push(Row::with_text(
-                        format!("{case}_{k}_rms_{axis}_last20"),
-                        format!("{case} {} RMS {axis}, final 20%", kind.name()),
-                        None,
-                        s.time_rms(kind, a, 0.8, 1.0),
-                        "m",
-                        "final 20% of the approach",
-                    ));
+                    rows.push(
+                        Row::new(
+                            format!("{case}_{k}_rms_{axis}"),
+                            format!("{case} {name} RMS {axis}"),
+                            s.time_rms(kind, a, 0.0, 1.0),
+                            "m",
+                        )
+                        .note("sqrt of the time mean of the MC mean square, whole approach"),
+                    );
+                    rows.push(
+                        Row::new(
+                            format!("{case}_{k}_rms_{axis}_last20"),
+                            format!("{case} {name} RMS {axis}, final 20%"),
+                            s.time_rms(kind, a, 0.8, 1.0),
+                            "m",
+                        )
+                        .note("final 20% of the approach"),
+                    );
                 }
             }
             for (a, axis) in ["x", "y", "z"].iter().enumerate() {
-                rows.push(Row::with_text(
-                    format!("{case}_adkf_sigma_ratio_{axis}"),
-                    format!("{case} ADKF sigma-hat/sigma {axis}"),
-                    Some("follows the truth (Figs. 10-12)"),
-                    s.sigma_ratio(0, a, 0.2, 1.0),
-                    "-",
-                    "time mean after the first 20%; truth includes the SNR fluctuation",
-                ));
+                rows.push(
+                    Row::new(
+                        format!("{case}_adkf_sigma_ratio_{axis}"),
+                        format!("{case} ADKF sigma-hat/sigma {axis}"),
+                        s.sigma_ratio(0, a, 0.2, 1.0),
+                        "-",
+                    )
+                    .paper_text("follows the truth (Figs. 10-12)")
+                    .note("time mean after the first 20%; truth includes the SNR fluctuation"),
+                );
             }
             // Per-time series.
             let mut columns = vec!["t".to_owned()];
@@ -274,7 +279,7 @@ impl Scenario for RbsLanding {
             let data = (0..s.len())
                 .map(|k| {
                     let mut r = vec![s.times.get(k).copied().unwrap_or(f64::NAN)];
-                    for f in 0..5 {
+                    for f in 0..FILTERS {
                         r.extend(
                             s.rms
                                 .get(f)
@@ -283,7 +288,7 @@ impl Scenario for RbsLanding {
                                 .unwrap_or([f64::NAN; 3]),
                         );
                     }
-                    for f in 0..5 {
+                    for f in 0..FILTERS {
                         r.push(
                             s.anees
                                 .get(f)
@@ -312,15 +317,26 @@ impl Scenario for RbsLanding {
         // CDKF post-fit sample check (eq 28 sign), normal case.
         if let Some(s) = summaries.first() {
             for (a, axis) in ["range", "xaz", "xel"].iter().enumerate() {
-                rows.push(Row::with_text(format!("scn1_sample_ratio_plus_{axis}"), format!("SCN.1 mean of (eps eps' + HPH')/R, {axis}"), Some("eq (28) corrected sign: 1"), s.sample_ratio[0][a], "-", "CDKF, aligned axis; R includes the SNR fluctuation, the filter assumes the mean"));
-                rows.push(Row::with_text(
-                    format!("scn1_sample_ratio_minus_{axis}"),
-                    format!("SCN.1 mean of (eps eps' - HPH')/R, {axis}"),
-                    Some("eq (28) as printed"),
-                    s.sample_ratio[1][a],
-                    "-",
-                    "SPEC 003: 0.82-0.89",
-                ));
+                rows.push(
+                    Row::new(
+                        format!("scn1_sample_ratio_plus_{axis}"),
+                        format!("SCN.1 mean of (eps eps' + HPH')/R, {axis}"),
+                        s.sample_ratio[0][a],
+                        "-",
+                    )
+                    .paper_text("eq (28) corrected sign: 1")
+                    .note("CDKF, aligned axis; R includes the SNR fluctuation, the filter assumes the mean"),
+                );
+                rows.push(
+                    Row::new(
+                        format!("scn1_sample_ratio_minus_{axis}"),
+                        format!("SCN.1 mean of (eps eps' - HPH')/R, {axis}"),
+                        s.sample_ratio[1][a],
+                        "-",
+                    )
+                    .paper_text("eq (28) as printed")
+                    .note("SPEC 003: 0.82-0.89"),
+                );
             }
         }
         // Figures 2-12.
@@ -360,7 +376,7 @@ impl Scenario for RbsLanding {
             }
         }
         for kind in [FilterKind::Cdkf, FilterKind::Adkf] {
-            let lines = CASES
+            let mut lines: Vec<Line> = CASES
                 .iter()
                 .zip(&summaries)
                 .map(|((case, _), s)| {
@@ -372,6 +388,17 @@ impl Scenario for RbsLanding {
                     )
                 })
                 .collect();
+            if kind == FilterKind::Adkf {
+                // The printed start-up, for comparison.
+                lines.extend(CASES.iter().zip(&summaries).map(|((case, _), s)| {
+                    line(
+                        format!("{} as printed", case.to_uppercase()),
+                        &t,
+                        s.anees[FilterKind::AdkfPaper.index()].iter().copied(),
+                        LineStyle::Bound,
+                    )
+                }));
+            }
             figures.push(Figure {
                 name: format!("fig{fig:02}_{}_anees", kind.name().to_lowercase()),
                 title: format!("Fig. {fig}: {} ANEES", kind.name()),
@@ -415,7 +442,7 @@ impl Scenario for RbsLanding {
             series,
             figures,
             notes: vec![
-                "filters: CDKF (decoupled, seed 003 eqs 21-27, eq 25 inverse restored), ADKF (eqs 28-32, sign of eq 28 corrected), ADKF-grow (window 1..L), ADKF-innov (innovation samples for the first L plots), KF6 (coupled 6-state KF)".into(),
+                "filters: CDKF (decoupled, seed 003 eqs 21-27, eq 25 inverse restored), ADKF (eqs 28-32, sign of eq 28 corrected, with our start-up: for the first L plots R = max(lambda, 1) x the assumed R, lambda the running mean of innovation-based scale samples), ADKF-paper (the same, started as printed: from the assumed R, weight 1/L), ADKF-grow (window 1..L), ADKF-innov (innovation samples for the first L plots), KF6 (coupled 6-state KF)".into(),
                 "plots: SNR-driven sigmas (eqs 6-8), 1/R^2 link, 3 dB log-normal SNR fluctuation; degraded cases scale every sigma by 5 and 10; filters assume the link-budget sigma at the measured range".into(),
                 "the paper gives figures only (no numbers): paper column states its claims; SPEC 003 numbers are an independent re-implementation's".into(),
             ],

@@ -1,10 +1,15 @@
-//! The error type of `argus-adaptive`.
+//! The one error type of `argus-adaptive`: the adaptive-R decoupled filter
+//! (seed 003) and the GLRT maneuver detection and input estimation (seed 001).
 
 use argus_core_math::MathError;
 use argus_filters::FilterError;
+use argus_motion_models::MotionError;
+use argus_sensors::SensorError;
 
-/// What went wrong in an adaptive-filter constructor or step. A failed step
-/// never modifies the estimate passed in (estimates are borrowed, never mutated).
+/// What went wrong in a constructor or step of this crate: the decoupled and
+/// adaptive-`R` filters, the GLRT detector, the MRAS estimator, the maneuver
+/// filter and the experiments. A failed call never modifies the estimate, the
+/// detector or the estimator passed in (they are borrowed, never mutated).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum AdaptiveError {
@@ -14,6 +19,12 @@ pub enum AdaptiveError {
     /// A numerical check failed in the core algebra.
     #[error(transparent)]
     Math(#[from] MathError),
+    /// A motion model of an experiment could not be built.
+    #[error(transparent)]
+    Motion(#[from] MotionError),
+    /// A sensor model could not be built or rejected a value.
+    #[error(transparent)]
+    Sensor(#[from] SensorError),
     /// A value that must be finite is NaN or infinite.
     #[error("{what} is not finite (got {value})")]
     NonFinite {
@@ -48,6 +59,19 @@ pub enum AdaptiveError {
         /// The largest deviation of `DᵀD` from the identity.
         deviation: f64,
     },
+    /// The GLRT onset window is empty or inverted (`N > M`), or too long.
+    #[error("onset window M = {max_age}, N = {min_age} is invalid: {reason}")]
+    InvalidWindow {
+        /// The longest onset age `M` considered.
+        max_age: usize,
+        /// The shortest onset age `N` considered.
+        min_age: usize,
+        /// Why it is rejected.
+        reason: &'static str,
+    },
+    /// The filter has no measurement Jacobian for the GLRT signature and none was given.
+    #[error("the measurement prediction has no Jacobian H, which the GLRT signature needs")]
+    MissingJacobian,
 }
 
 /// Checks that `value` is finite.
