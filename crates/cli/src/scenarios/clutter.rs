@@ -4,8 +4,9 @@
 //! the threshold set for `P_D = 0.9`. NN, NN with the HYCA gain, SN, PSN and PDA run
 //! side by side on the same plots over a sweep of clutter densities. Reported per filter
 //! and density: steady-state position RMSE, ANEES with its 95 % interval, track-loss
-//! rate, and for NN and PDA the off-line predicted RMSE (HYCA and the information
-//! reduction factor) next to the Monte Carlo one.
+//! rate, and for NN, NN-HYCA and PDA the off-line predicted RMSE (HYCA in its
+//! general-gain form for the plain NN, HYCA for NN-HYCA, the information reduction
+//! factor for PDA) next to the Monte Carlo one.
 //!
 //! Plots are generated here (not by `argus_sim::generate_plots`) because the truth has
 //! process noise, which `argus_sim::Trajectory` does not model.
@@ -83,13 +84,19 @@ pub(crate) struct FilterResult {
 pub(crate) struct ConfigResult {
     /// One per [`FILTERS`] entry.
     pub(crate) filters: Vec<FilterResult>,
-    /// HYCA-predicted steady-state position RMSE (None: the recursion diverges).
+    /// Predicted steady-state position RMSE of the plain NN (general-gain HYCA; None:
+    /// the recursion diverges).
     pub(crate) predicted_nn: Option<f64>,
+    /// HYCA-predicted steady-state position RMSE of NN-HYCA (None: diverges).
+    pub(crate) predicted_hyca: Option<f64>,
     /// PDA-IRF-predicted steady-state position RMSE (None: diverges).
     pub(crate) predicted_pda: Option<f64>,
     /// 95 % interval of a time-averaged ANEES over `kept` runs (4·kept dof, conservative).
     pub(crate) interval: (f64, f64),
 }
+
+/// Reads one prediction from a configuration's results.
+type Predicted = fn(&ConfigResult) -> Option<f64>;
 
 fn assoc(e: argus_association::AssociationError) -> CliError {
     CliError::Usage(format!("association: {e}"))
@@ -158,6 +165,14 @@ pub(crate) fn run_config(
     .map_err(assoc)?;
     let pda_pred = PerformancePredictor::new(sys, gate, c.p_d, c.density, PredictedFilter::Pda)
         .map_err(assoc)?;
+    let nn_pred = PerformancePredictor::new(
+        sys,
+        gate,
+        c.p_d,
+        c.density,
+        PredictedFilter::NearestNeighbourKalmanGain,
+    )
+    .map_err(assoc)?;
     // The HYCA gain sequence (deterministic, the same for every run).
     let mut hyca_steps: Vec<PredictionStep<4, 2>> = Vec::with_capacity(c.steps);
     let mut p = p0;
@@ -307,7 +322,8 @@ pub(crate) fn run_config(
     let iv = anees_interval(4, kept_pda, 0.95)?;
     Ok(ConfigResult {
         filters,
-        predicted_nn: predicted_rmse(&hyca, &p0)?,
+        predicted_nn: predicted_rmse(&nn_pred, &p0)?,
+        predicted_hyca: predicted_rmse(&hyca, &p0)?,
         predicted_pda: predicted_rmse(&pda_pred, &p0)?,
         interval: (iv.lower, iv.upper),
     })
@@ -426,22 +442,22 @@ impl Scenario for Clutter {
                     let key = format!("{name}_{snr:.0}dB_{lam:e}");
                     let loss = f.lost as f64 / f.runs.max(1) as f64;
                     let inside = r.interval.0 <= f.anees && f.anees <= r.interval.1;
-                    report.rows.push(Row {
-                        key: format!("{key}_rmse"),
-                        quantity: format!("{name} RMSE, {snr:.0} dB, λ={lam:e}"),
-                        paper: None,
-                        paper_text: None,
-                        ours: f.rmse,
-                        unit: "m".into(),
-                        note: format!(
+                    report.rows.push(
+                        Row::new(
+                            format!("{key}_rmse"),
+                            format!("{name} RMSE, {snr:.0} dB, λ={lam:e}"),
+                            f.rmse,
+                            "m",
+                        )
+                        .note(format!(
                             "ANEES {:.2} ({}) in [{:.2}, {:.2}], loss {:.1} %",
                             f.anees,
                             if inside { "inside" } else { "outside" },
                             r.interval.0,
                             r.interval.1,
                             100.0 * loss
-                        ),
-                    });
+                        )),
+                    );
                     table.push(vec![
                         snr,
                         lam,
@@ -453,24 +469,33 @@ impl Scenario for Clutter {
                     ]);
                 }
                 for (name, pred, idx) in [
-                    ("NN-HYCA", r.predicted_nn, 1usize),
+                    ("NN", r.predicted_nn, 0usize),
+                    ("NN-HYCA", r.predicted_hyca, 1),
                     ("PDA", r.predicted_pda, 4),
                 ] {
-                    let mc = r.filters.get(idx).map_or(f64::NAN, |f| f.rmse);
-                    report.rows.push(Row {
-                        key: format!("{name}_{snr:.0}dB_{lam:e}_predicted"),
-                        quantity: format!("{name} predicted RMSE, {snr:.0} dB, λ={lam:e}"),
-                        paper: None,
-                        paper_text: Some("off-line prediction".into()),
-                        ours: pred.unwrap_or(f64::INFINITY),
-                        unit: "m".into(),
-                        note: match pred {
-                            Some(v) => {
-                                format!("Monte Carlo {mc:.2} m ({:+.1} %)", 100.0 * (v / mc - 1.0))
-                            }
-                            None => "recursion diverges: track loss predicted".into(),
-                        },
-                    });
+                    let f = r.filters.get(idx);
+                    let mc = f.map_or(f64::NAN, |f| f.rmse);
+                    let loss = f.map_or(f64::NAN, |f| f.lost as f64 / f.runs.max(1) as f64);
+                    report.rows.push(
+                        Row::new(
+                            format!("{name}_{snr:.0}dB_{lam:e}_predicted"),
+                            format!("{name} predicted RMSE, {snr:.0} dB, λ={lam:e}"),
+                            pred.unwrap_or(f64::INFINITY),
+                            "m",
+                        )
+                        .paper_text("off-line prediction")
+                        .note(match pred {
+                            Some(v) => format!(
+                                "Monte Carlo {mc:.2} m ({:+.1} %), loss {:.1} %",
+                                100.0 * (v / mc - 1.0),
+                                100.0 * loss
+                            ),
+                            None => format!(
+                                "recursion diverges: track loss predicted (Monte Carlo loss {:.1} %)",
+                                100.0 * loss
+                            ),
+                        }),
+                    );
                 }
                 results.push((lam, r));
             }
@@ -494,19 +519,17 @@ impl Scenario for Clutter {
                     style: LineStyle::Solid,
                 });
             }
-            for (label, f) in [("NN-HYCA predicted", 0usize), ("PDA predicted", 1)] {
+            let pick: [(&str, Predicted); 3] = [
+                ("NN predicted", |r| r.predicted_nn),
+                ("NN-HYCA predicted", |r| r.predicted_hyca),
+                ("PDA predicted", |r| r.predicted_pda),
+            ];
+            for (label, f) in pick {
                 rmse_lines.push(Line {
                     label: label.into(),
                     points: results
                         .iter()
-                        .filter_map(|(lam, r)| {
-                            let v = if f == 0 {
-                                r.predicted_nn
-                            } else {
-                                r.predicted_pda
-                            };
-                            v.map(|v| (lam.log10(), v))
-                        })
+                        .filter_map(|(lam, r)| f(r).map(|v| (lam.log10(), v)))
                         .collect(),
                     style: LineStyle::Points,
                 });
@@ -606,20 +629,26 @@ mod tests {
     #[test]
     fn predicted_rmse_matches_monte_carlo_where_tracks_survive() {
         // λ = 1e-5 m⁻² (≈ 0.3 clutter plots per gate), 10 dB, 150 runs × 60 scans, seed 12:
-        // HYCA (NN with its own gain) and the PDA IRF recursion within 15 % of the Monte
-        // Carlo steady-state RMSE, where fewer than 5 % of tracks are lost (issue 5).
+        // the plain NN (general-gain HYCA with its Kalman gain), NN-HYCA (HYCA, its own
+        // gain) and PDA (information reduction factor) predictions within 15 % of the
+        // Monte Carlo steady-state RMSE, where fewer than 5 % of tracks are lost (issue 5).
         let r = run_config(&reduced(1e-5, 10.0), 12, 0..150, &|| {}).unwrap();
         let f = |i: usize| r.filters.get(i).unwrap();
         eprintln!(
-            "{:?}; pred NN {:?} PDA {:?}",
+            "{:?}; pred NN {:?} HYCA {:?} PDA {:?}",
             r.filters
                 .iter()
                 .map(|f| (f.rmse, f.anees, f.lost))
                 .collect::<Vec<_>>(),
             r.predicted_nn,
+            r.predicted_hyca,
             r.predicted_pda
         );
-        for (i, pred) in [(1, r.predicted_nn), (4, r.predicted_pda)] {
+        for (i, pred) in [
+            (0, r.predicted_nn),
+            (1, r.predicted_hyca),
+            (4, r.predicted_pda),
+        ] {
             assert!(f(i).lost * 20 < f(i).runs, "filter {i} lost {}", f(i).lost);
             let pred = pred.unwrap();
             assert!(
@@ -630,6 +659,6 @@ mod tests {
         }
         // Where the HYCA recursion diverges (λ = 3e-5) it must say so.
         let r = run_config(&reduced(3e-5, 10.0), 13, 0..20, &|| {}).unwrap();
-        assert!(r.predicted_nn.is_none());
+        assert!(r.predicted_hyca.is_none());
     }
 }

@@ -230,38 +230,43 @@ impl Scenario for Launch {
         progress.finish();
         let m = Metrics::from_runs(&records, 6, 3, 0.1)?;
         let mut report = Report::default();
-        let row = |key: &str, q: &str, v: f64, unit: &str, note: String| {
-            Row::new(key, q, v, unit)
-                .paper_text("no number in the paper")
-                .note(note)
-        };
-        report.rows.push(row(
-            "rmse_pos",
-            "time-averaged position RMSE",
-            m.avg_rmse_pos,
-            "m",
-            "after the first 10 % of scans".into(),
-        ));
-        report.rows.push(row(
-            "rmse_vel",
-            "time-averaged velocity RMSE",
-            m.avg_rmse_vel,
-            "m/s",
-            "after the first 10 % of scans".into(),
-        ));
+        let no_number = "no number in the paper";
+        report.rows.push(
+            Row::new(
+                "rmse_pos",
+                "time-averaged position RMSE",
+                m.avg_rmse_pos,
+                "m",
+            )
+            .paper_text(no_number)
+            .note("after the first 10 % of scans"),
+        );
+        report.rows.push(
+            Row::new(
+                "rmse_vel",
+                "time-averaged velocity RMSE",
+                m.avg_rmse_vel,
+                "m/s",
+            )
+            .paper_text(no_number)
+            .note("after the first 10 % of scans"),
+        );
         let iv = m
             .anees_interval
             .map_or((f64::NAN, f64::NAN), |i| (i.lower, i.upper));
-        report.rows.push(row(
-            "anees",
-            "time-averaged ANEES (position–velocity, 6 dof)",
-            m.avg_anees.unwrap_or(f64::NAN),
-            "",
-            format!(
+        report.rows.push(
+            Row::new(
+                "anees",
+                "time-averaged ANEES (position–velocity, 6 dof)",
+                m.avg_anees.unwrap_or(f64::NAN),
+                "",
+            )
+            .paper_text(no_number)
+            .note(format!(
                 "per-step 95 % interval [{:.2}, {:.2}]; {} of {} runs lost (NEES > 1000)",
                 iv.0, iv.1, m.lost, m.runs
-            ),
-        ));
+            )),
+        );
         let rows: Vec<Vec<f64>> = m
             .steps
             .iter()
