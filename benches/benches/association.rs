@@ -1,6 +1,7 @@
-//! Data association in clutter (seed 002): gate + PDA update with 1, 10 and 100 plots
-//! in the gate, one PSN update with 10 gated plots, and the HYCA and PDA-IRF recursions
-//! to steady state (2-D CV, σ = 20 m, σ_a = 1 m/s², γ = 16, P_D = 0.9, λ = 1e-5 m⁻²).
+//! Data association in clutter (seed 002): gate + PDA update with 1, 3, 10, 30 and 100 plots
+//! in the gate, one PSN update with 10 gated plots, and the HYCA (own gain and the plain
+//! NN's Kalman gain) and PDA-IRF recursions to steady state (2-D CV, σ = 20 m,
+//! σ_a = 1 m/s², γ = 16, P_D = 0.9, λ = 1e-5 m⁻²).
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
 use std::hint::black_box;
@@ -43,7 +44,7 @@ fn association(c: &mut Criterion) {
     let s_sd = mp.s()[(0, 0)].sqrt();
     let pda = Pda::new(gate, 0.9, ClutterModel::Poisson { density: 1e-5 }).unwrap();
     let mut group = c.benchmark_group("pda_update");
-    for n in [1usize, 10, 100] {
+    for n in [1usize, 3, 10, 30, 100] {
         let z = plots(mp.z_pred(), s_sd, n);
         assert_eq!(pda.associate(&pred, &mp, &radar, &z).unwrap().gated, n);
         group.bench_with_input(BenchmarkId::from_parameter(n), &z, |b, z| {
@@ -71,6 +72,10 @@ fn association(c: &mut Criterion) {
     let p0 = Matrix::<4, 4>::from_diagonal(&Vector::<4>::new(400.0, 100.0, 400.0, 100.0));
     for (name, f) in [
         ("hyca_steady_state", PredictedFilter::NearestNeighbour),
+        (
+            "nn_kalman_gain_steady_state",
+            PredictedFilter::NearestNeighbourKalmanGain,
+        ),
         ("pda_irf_steady_state", PredictedFilter::Pda),
     ] {
         let pp = PerformancePredictor::new(sys, gate, 0.9, 1e-5, f).unwrap();
