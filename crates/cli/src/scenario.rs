@@ -27,15 +27,20 @@ pub(crate) struct ParamSpec {
 }
 
 /// Validated parameter values (every key of the scenario's specs is present).
+///
+/// `--set key=a,b,c` gives a key a list of values (each checked like a single one): the
+/// map holds the first, [`Params::list`] all of them, and [`Params::get`] refuses a key
+/// set to a list, so only a scenario that reads the key with [`Params::list`] accepts one.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub(crate) struct Params(BTreeMap<String, f64>);
+pub(crate) struct Params(BTreeMap<String, f64>, BTreeMap<String, Vec<f64>>);
 
 impl Params {
     /// The defaults overridden by `key=value` settings, each checked against `specs`.
     ///
     /// # Errors
     /// [`CliError::Usage`] for a setting without `=`, an unknown key (the message lists the
-    /// known ones), a non-numeric or non-finite value, or a value outside `[min, max]`.
+    /// known ones), a non-numeric or non-finite value, or a value outside `[min, max]`
+    /// (for a comma list: any of its values).
     pub(crate) fn from_settings(
         specs: &[ParamSpec],
         settings: &[String],
@@ -44,6 +49,7 @@ impl Params {
             .iter()
             .map(|p| (p.key.to_owned(), p.default))
             .collect();
+        let mut lists: BTreeMap<String, Vec<f64>> = BTreeMap::new();
         for s in settings {
             let (k, v) = s
                 .split_once('=')
@@ -56,18 +62,29 @@ impl Params {
                     known.join(", ")
                 ))
             })?;
-            let x: f64 = v
-                .parse()
-                .map_err(|_| CliError::Usage(format!("--set {k}={v}: not a number")))?;
-            if !x.is_finite() || x < spec.min || x > spec.max {
-                return Err(CliError::Usage(format!(
-                    "--set {k}={v}: must lie in [{}, {}] ({})",
-                    spec.min, spec.max, spec.help
-                )));
+            let mut xs = Vec::new();
+            for item in v.split(',').map(str::trim) {
+                let x: f64 = item.parse().map_err(|_| {
+                    CliError::Usage(format!("--set {k}={v}: {item:?} is not a number"))
+                })?;
+                if !x.is_finite() || x < spec.min || x > spec.max {
+                    return Err(CliError::Usage(format!(
+                        "--set {k}={v}: {item} must lie in [{}, {}] ({})",
+                        spec.min, spec.max, spec.help
+                    )));
+                }
+                xs.push(x);
             }
-            map.insert(k.to_owned(), x);
+            if let Some(&first) = xs.first() {
+                map.insert(k.to_owned(), first);
+            }
+            if xs.len() > 1 {
+                lists.insert(k.to_owned(), xs);
+            } else {
+                lists.remove(k);
+            }
         }
-        Ok(Self(map))
+        Ok(Self(map, lists))
     }
 
     /// The value of `key`.
@@ -76,10 +93,31 @@ impl Params {
     /// [`CliError::Usage`] if the scenario asks for a key it did not declare (a bug in
     /// the scenario, reported rather than panicking).
     pub(crate) fn get(&self, key: &str) -> Result<f64, CliError> {
+        if let Some(xs) = self.1.get(key) {
+            return Err(CliError::Usage(format!(
+                "--set {key}: takes one value here, got a list of {}",
+                xs.len()
+            )));
+        }
         self.0
             .get(key)
             .copied()
             .ok_or_else(|| CliError::Usage(format!("parameter {key} is not declared")))
+    }
+
+    /// All values of `key`: the list given as `--set key=a,b,…`, else its one value.
+    ///
+    /// # Errors
+    /// [`CliError::Usage`] if the scenario asks for a key it did not declare.
+    pub(crate) fn list(&self, key: &str) -> Result<Vec<f64>, CliError> {
+        match self.1.get(key) {
+            Some(xs) => Ok(xs.clone()),
+            None => self
+                .0
+                .get(key)
+                .map(|&x| vec![x])
+                .ok_or_else(|| CliError::Usage(format!("parameter {key} is not declared"))),
+        }
     }
 
     /// All values.

@@ -2,12 +2,17 @@
 //! the pseudo-measurement method and EXX (paper Figs. 3–6), track 1 and 32 RMSE of
 //! sensor 1 with and without compensation (Figs. 8–11). The scenario itself lives in
 //! `argus_registration::simulation`; this file runs it through `argus_sim::monte_carlo`.
+//!
+//! `--set sensors=2,4,8 --set targets=32,128,512` runs a sweep instead: one campaign per
+//! combination, reporting the cost per plot and the final bias RMSE of each (table rows,
+//! `summary.json` and `sweep.csv`). Extra sensors sit on the x axis at 10 km spacing with
+//! offsets `s/S` s; extra targets continue the 8-column grid upward (rows 10 km apart).
 
 use argus_core_math::Vector;
 use argus_registration::simulation::{ScenarioConfig, Summary, run};
-use argus_registration::{Initiation, Linearization, RegistrationError};
+use argus_registration::{Initiation, Linearization};
 use argus_sim::{
-    KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
+    Bias, KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
     monte_carlo,
 };
 use rand_distr::{Distribution, StandardNormal};
@@ -18,14 +23,9 @@ use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
 
 pub(crate) struct Bias32;
 
-fn reg(e: RegistrationError) -> CliError {
-    CliError::Usage(format!("bias-32: registration: {e}"))
-}
-
-fn config(p: &Params) -> Result<ScenarioConfig, CliError> {
-    let sensors = p.get("sensors")? as usize;
-    let targets = p.get("targets")? as usize;
-    let mut c = ScenarioConfig::grid(sensors, targets).map_err(reg)?;
+/// The scenario for `sensors` radars and `targets` targets with the other parameters of `p`.
+fn config(p: &Params, sensors: usize, targets: usize) -> Result<ScenarioConfig, CliError> {
+    let mut c = ScenarioConfig::grid(sensors, targets)?;
     c.recorded = if targets >= 32 {
         vec![0, 31]
     } else {
@@ -43,8 +43,97 @@ fn config(p: &Params) -> Result<ScenarioConfig, CliError> {
         Initiation::Given
     };
     c.run_exx = p.get("exx")? > 0.5;
-    c.validate().map_err(reg)?;
+    c.validate()?;
     Ok(c)
+}
+
+/// The single-campaign configuration (`sensors` and `targets` one value each).
+fn single_config(p: &Params) -> Result<ScenarioConfig, CliError> {
+    config(p, p.get("sensors")? as usize, p.get("targets")? as usize)
+}
+
+const COMPONENTS: [&str; 4] = [
+    "range offset",
+    "azimuth offset",
+    "range scale",
+    "azimuth scale",
+];
+const UNITS: [&str; 4] = ["m", "rad", "-", "-"];
+
+/// The sweep over every (sensors, targets) combination: per combination one campaign of
+/// `ctx.runs`, its wall time per plot and its final bias RMSE.
+fn sweep(ctx: &RunContext, sensors: &[f64], targets: &[f64]) -> Result<Report, CliError> {
+    let mut rows = Vec::new();
+    let mut table = Vec::new();
+    let progress = &ctx.progress;
+    for &s_count in sensors {
+        for &n in targets {
+            let (s_count, n) = (s_count as usize, n as usize);
+            let c = config(&ctx.params, s_count, n)?;
+            let started = std::time::Instant::now();
+            let one = |_: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<_, CliError> {
+                Ok(run(&c, &mut || StandardNormal.sample(rng))?)
+            };
+            let recs = monte_carlo(ctx.seed, ctx.runs.clone(), one, || progress.tick())?;
+            let elapsed = started.elapsed().as_secs_f64();
+            let plots: usize = recs.iter().map(|r| r.plots).sum();
+            let sum = Summary::from_runs(&recs, s_count)?;
+            let cost = elapsed / plots.max(1) as f64 * 1e6;
+            let tag = format!("s{s_count}_n{n}");
+            let what = format!("S={s_count}, N={n}");
+            let note = format!("{} runs, {plots} plots, t = {} s", sum.runs, c.duration);
+            rows.push(
+                Row::new(
+                    format!("sweep_{tag}_cost_per_plot"),
+                    format!("wall time per plot, {what}"),
+                    cost,
+                    "us",
+                )
+                .note(note.clone()),
+            );
+            let last = |v: &Vec<[f64; 4]>| v.last().copied().unwrap_or([f64::NAN; 4]);
+            let (p, e) = (last(&sum.proposed_rmse), last(&sum.exx_rmse));
+            for (k, name) in COMPONENTS.iter().enumerate() {
+                rows.push(
+                    Row::new(
+                        format!("sweep_{tag}_{}_rmse", name.replace(' ', "_")),
+                        format!("final {name} RMSE, proposed, {what}"),
+                        p[k],
+                        UNITS[k],
+                    )
+                    .note(note.clone()),
+                );
+            }
+            let mut line = vec![s_count as f64, n as f64, plots as f64, cost];
+            line.extend(p);
+            line.extend(e);
+            table.push(line);
+        }
+    }
+    progress.finish();
+    let mut columns: Vec<String> = ["sensors", "targets", "plots", "us_per_plot"]
+        .iter()
+        .map(|x| (*x).to_owned())
+        .collect();
+    for m in ["proposed", "exx"] {
+        for n in ["br", "bth", "er", "eth"] {
+            columns.push(format!("{m}_{n}_final"));
+        }
+    }
+    Ok(Report {
+        rows,
+        series: vec![Series {
+            name: "sweep".into(),
+            columns,
+            rows: table,
+        }],
+        figures: Vec::new(),
+        notes: vec![
+            "Sweep: one campaign per (sensors, targets); sensors at (10 km·s, 0) with offsets s/S s, targets on the 8-column grid continued upward (rows 10 km apart).".to_owned(),
+            "Wall time per plot includes the local filters, the pseudo-measurement update and EXX (exx=1); runs go in parallel, so it is total wall time over all plots.".to_owned(),
+            "summary.json `params` holds the first value of each list; sweep.csv lists every combination (EXX columns NaN when exx=0).".to_owned(),
+        ],
+    })
 }
 
 impl Scenario for Bias32 {
@@ -53,7 +142,7 @@ impl Scenario for Bias32 {
     }
 
     fn description(&self) -> &'static str {
-        "seed 004: bias estimation with pseudo-measurements vs EXX, two async radars, 32 targets, compensation"
+        "seed 004: bias estimation with pseudo-measurements vs EXX, two async radars (true bias 20 m, 2 mrad, 3e-5, 2e-4 each), 32 targets, compensation"
     }
 
     fn default_runs(&self) -> u64 {
@@ -67,14 +156,14 @@ impl Scenario for Bias32 {
                 default: 2.0,
                 min: 2.0,
                 max: 64.0,
-                help: "number of radars (at 10 km spacing on the x axis)",
+                help: "number of radars (at 10 km spacing on the x axis); a comma list sweeps",
             },
             ParamSpec {
                 key: "targets",
                 default: 32.0,
                 min: 1.0,
                 max: 4096.0,
-                help: "number of targets (8-column grid)",
+                help: "number of targets (8-column grid); a comma list sweeps",
             },
             ParamSpec {
                 key: "duration",
@@ -107,8 +196,11 @@ impl Scenario for Bias32 {
         ]
     }
 
+    /// The truth and the radars of one run, each radar with its true bias, so that
+    /// `argus simulate bias-32` writes the biased plots the registration sees
+    /// (β = [20 m, 2 mrad, 3e-5, 2e-4] on every radar).
     fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
-        let c = config(p)?;
+        let c = single_config(p)?;
         let mut truth = Truth::new();
         for x in &c.targets {
             truth.add(Trajectory::new(
@@ -122,60 +214,54 @@ impl Scenario for Bias32 {
         let mut specs = Vec::new();
         for (s, setup) in c.sensors.iter().enumerate() {
             let pos = setup.sensor.position();
-            specs.push(SensorSpec::new(
-                SensorId(s as u32 + 1),
-                Vector::<3>::new(pos[0], pos[1], 0.0),
-                SensorKind::Polar {
-                    sigma_range: 10.0,
-                    sigma_azimuth: 1e-3,
-                },
-                Schedule::Periodic {
-                    period: setup.period,
-                    offset: setup.offset,
-                },
-            )?);
+            let sig = setup.sensor.sigmas(1.0);
+            let b = setup.bias.as_vector();
+            specs.push(
+                SensorSpec::new(
+                    SensorId(s as u32 + 1),
+                    Vector::<3>::new(pos[0], pos[1], 0.0),
+                    SensorKind::Polar {
+                        sigma_range: sig.range(),
+                        sigma_azimuth: sig.azimuth(),
+                    },
+                    Schedule::Periodic {
+                        period: setup.period,
+                        offset: setup.offset,
+                    },
+                )?
+                .with_bias(Bias {
+                    range_offset: b[0],
+                    azimuth_offset: b[1],
+                    elevation_offset: 0.0,
+                    range_scale: b[2],
+                    azimuth_scale: b[3],
+                })?,
+            );
         }
         Ok((truth, specs))
     }
 
     #[allow(clippy::too_many_lines)]
     fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
-        let c = config(&ctx.params)?;
+        let (sensors, targets) = (ctx.params.list("sensors")?, ctx.params.list("targets")?);
+        if sensors.len() > 1 || targets.len() > 1 {
+            return sweep(ctx, &sensors, &targets);
+        }
+        let c = single_config(&ctx.params)?;
         let started = std::time::Instant::now();
         let one = |_: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<_, CliError> {
-            run(&c, &mut || StandardNormal.sample(rng)).map_err(reg)
+            Ok(run(&c, &mut || StandardNormal.sample(rng))?)
         };
         let progress = &ctx.progress;
         let recs = monte_carlo(ctx.seed, ctx.runs.clone(), one, || progress.tick())?;
         progress.finish();
         let elapsed = started.elapsed().as_secs_f64();
         let plots: usize = recs.iter().map(|r| r.plots).sum();
-        let s = Summary::from_runs(&recs, c.sensors.len()).map_err(reg)?;
+        let s = Summary::from_runs(&recs, c.sensors.len())?;
         let end = s.times.len().saturating_sub(1);
         let at = |t: f64| s.index_at(t);
-        let comp = [
-            "range offset",
-            "azimuth offset",
-            "range scale",
-            "azimuth scale",
-        ];
-        let units = ["m", "rad", "-", "-"];
+        let (comp, units) = (COMPONENTS, UNITS);
         let mut rows = Vec::new();
-        let row = |key: String,
-                   q: String,
-                   paper: Option<f64>,
-                   text: Option<&str>,
-                   ours: f64,
-                   unit: &str,
-                   note: String| Row {
-            key,
-            quantity: q,
-            paper,
-            paper_text: text.map(str::to_owned),
-            ours,
-            unit: unit.into(),
-            note,
-        };
         for (k, name) in comp.iter().enumerate() {
             for (tag, t) in [
                 ("10s", 10.0),
@@ -183,54 +269,74 @@ impl Scenario for Bias32 {
                 ("final", s.times.get(end).copied().unwrap_or(0.0)),
             ] {
                 let i = at(t);
+                let key = name.replace(' ', "_");
                 let p = s.proposed_rmse.get(i).map_or(f64::NAN, |v| v[k]);
-                rows.push(row(
-                    format!("proposed_{}_{tag}", name.replace(' ', "_")),
-                    format!("{name} RMSE, proposed, t={t:.0} s"),
-                    None,
-                    Some("Figs. 3-6: below EXX"),
-                    p,
-                    units[k],
-                    format!("{} runs", s.runs),
-                ));
-                if let Some(e) = s.exx_rmse.get(i) {
-                    rows.push(row(
-                        format!("exx_{}_{tag}", name.replace(' ', "_")),
-                        format!("{name} RMSE, EXX, t={t:.0} s"),
-                        None,
-                        Some("Figs. 3-6"),
-                        e[k],
+                rows.push(
+                    Row::new(
+                        format!("proposed_{key}_{tag}"),
+                        format!("{name} RMSE, proposed, t={t:.0} s"),
+                        p,
                         units[k],
-                        format!("{} runs", s.runs),
-                    ));
+                    )
+                    .paper_text("Figs. 3-6: below EXX")
+                    .note(format!("{} runs", s.runs)),
+                );
+                if let Some(v) = s.proposed_predicted.get(i) {
+                    rows.push(
+                        Row::new(
+                            format!("proposed_{key}_{tag}_predicted"),
+                            format!("{name} RMSE the proposed estimator predicts (sqrt mean Σ), t={t:.0} s"),
+                            v[k],
+                            units[k],
+                        )
+                        .note("its own covariance; over-confident (see ANEES)"),
+                    );
+                }
+                if let Some(e) = s.exx_rmse.get(i) {
+                    rows.push(
+                        Row::new(
+                            format!("exx_{key}_{tag}"),
+                            format!("{name} RMSE, EXX, t={t:.0} s"),
+                            e[k],
+                            units[k],
+                        )
+                        .paper_text("Figs. 3-6")
+                        .note(format!("{} runs", s.runs)),
+                    );
                 }
             }
         }
         let nees_note = format!("expected {} (chi-square dof)", s.bias_dim);
-        rows.push(row(
-            "proposed_anees_final".into(),
-            "bias ANEES, proposed, final".into(),
-            Some(s.bias_dim as f64),
-            Some("consistent"),
-            s.proposed_anees.get(end).copied().unwrap_or(f64::NAN),
-            "-",
-            nees_note.clone(),
-        ));
-        if let Some(e) = s.exx_anees.get(end) {
-            rows.push(row(
-                "exx_anees_final".into(),
-                "bias ANEES, EXX, final".into(),
-                Some(s.bias_dim as f64),
-                Some("consistent"),
-                *e,
+        rows.push(
+            Row::new(
+                "proposed_anees_final",
+                "bias ANEES, proposed, final",
+                s.proposed_anees.get(end).copied().unwrap_or(f64::NAN),
                 "-",
-                nees_note,
-            ));
+            )
+            .paper(s.bias_dim as f64)
+            .paper_text("consistent")
+            .note(nees_note.clone()),
+        );
+        if let Some(e) = s.exx_anees.get(end) {
+            rows.push(
+                Row::new("exx_anees_final", "bias ANEES, EXX, final", *e, "-")
+                    .paper(s.bias_dim as f64)
+                    .paper_text("consistent")
+                    .note(nees_note),
+            );
         }
         for tr in &s.tracks {
-            let n = tr.pos_biased.len();
-            let avg = |v: &Vec<f64>| v.iter().skip(n / 2).sum::<f64>() / (n - n / 2).max(1) as f64;
             let id = tr.target + 1;
+            // The second half (steady state) and the first 20 s (the transient in which the
+            // bias-free start is pulled to the biased plots).
+            let n = tr.pos_biased.len();
+            let early = tr.times.iter().take_while(|&&t| t <= 20.0).count();
+            let mean = |v: &Vec<f64>, a: usize, b: usize| {
+                let b = b.min(v.len());
+                v.get(a..b)
+                    .map_or(f64::NAN, |w| w.iter().sum::<f64>() / w.len().max(1) as f64)
+            };
             for (what, b, cmp, rf, unit) in [
                 (
                     "position",
@@ -247,48 +353,59 @@ impl Scenario for Bias32 {
                     "m/s",
                 ),
             ] {
-                rows.push(row(
-                    format!("track{id}_{what}_biased"),
-                    format!("track {id} (sensor 1) {what} RMSE, no compensation"),
-                    None,
-                    Some("Figs. 8-11"),
-                    avg(b),
-                    unit,
-                    "mean over the second half of the run".into(),
-                ));
-                rows.push(row(
-                    format!("track{id}_{what}_compensated"),
-                    format!("track {id} (sensor 1) {what} RMSE, compensated"),
-                    None,
-                    Some("Figs. 8-11: lower"),
-                    avg(cmp),
-                    unit,
-                    format!("reduction {:.1} %", 100.0 * (1.0 - avg(cmp) / avg(b))),
-                ));
-                rows.push(row(
-                    format!("track{id}_{what}_reference"),
-                    format!("track {id} (sensor 1) {what} RMSE, bias-free plots"),
-                    None,
-                    None,
-                    avg(rf),
-                    unit,
-                    "same filter and noise without bias".into(),
-                ));
+                for (win, lo, hi, wnote) in [
+                    ("", n / 2, n, "mean over the second half of the run"),
+                    ("_0_20s", 0, early, "mean over 0-20 s (transient)"),
+                ] {
+                    let (vb, vc) = (mean(b, lo, hi), mean(cmp, lo, hi));
+                    rows.push(
+                        Row::new(
+                            format!("track{id}_{what}_biased{win}"),
+                            format!("track {id} (sensor 1) {what} RMSE, no compensation"),
+                            vb,
+                            unit,
+                        )
+                        .paper_text("Figs. 8-11")
+                        .note(wnote),
+                    );
+                    rows.push(
+                        Row::new(
+                            format!("track{id}_{what}_compensated{win}"),
+                            format!("track {id} (sensor 1) {what} RMSE, compensated"),
+                            vc,
+                            unit,
+                        )
+                        .paper_text("Figs. 8-11: lower")
+                        .note(format!(
+                            "{wnote}; reduction {:.1} %",
+                            100.0 * (1.0 - vc / vb)
+                        )),
+                    );
+                    rows.push(
+                        Row::new(
+                            format!("track{id}_{what}_reference{win}"),
+                            format!("track {id} (sensor 1) {what} RMSE, bias-free plots"),
+                            mean(rf, lo, hi),
+                            unit,
+                        )
+                        .note(format!("{wnote}; same filter and noise without bias")),
+                    );
+                }
             }
         }
-        rows.push(row(
-            "cost_per_plot".into(),
-            "wall time per plot (all threads)".into(),
-            None,
-            None,
-            elapsed / plots.max(1) as f64 * 1e6,
-            "us",
-            format!(
+        rows.push(
+            Row::new(
+                "cost_per_plot",
+                "wall time per plot (all threads)",
+                elapsed / plots.max(1) as f64 * 1e6,
+                "us",
+            )
+            .note(format!(
                 "{} sensors, {} targets, {plots} plots",
                 c.sensors.len(),
                 c.targets.len()
-            ),
-        ));
+            )),
+        );
 
         let mut cols = vec!["t".to_owned()];
         for m in ["proposed", "exx"] {
@@ -424,5 +541,89 @@ impl Scenario for Bias32 {
             figures,
             notes,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)] // test code: a failure should panic with its message
+
+    use super::*;
+    use crate::scenario::Progress;
+
+    fn ctx(settings: &[&str]) -> Result<RunContext, CliError> {
+        let settings: Vec<String> = settings.iter().map(|s| (*s).to_owned()).collect();
+        Ok(RunContext {
+            runs: 0..1,
+            seed: 5,
+            params: Params::from_settings(&Bias32.params(), &settings)?,
+            progress: Progress::new(0, false),
+        })
+    }
+
+    #[test]
+    fn comma_lists_run_a_sweep() {
+        // 2 × 2 combinations, 1 run of 3 s each: one sweep.csv row and 5 table rows per
+        // combination (cost per plot and the four bias components).
+        let c = ctx(&["sensors=2,3", "targets=4,9", "duration=3", "exx=0"]).unwrap();
+        let report = Bias32.run(&c).unwrap();
+        let sweep = report.series.iter().find(|s| s.name == "sweep").unwrap();
+        assert_eq!(sweep.rows.len(), 4);
+        assert_eq!(report.rows.len(), 4 * 5);
+        for (row, (s, n)) in sweep.rows.iter().zip([(2, 4), (2, 9), (3, 4), (3, 9)]) {
+            assert_eq!((row[0] as usize, row[1] as usize), (s, n));
+            // Plots: every sensor sees every target at 1 s steps over [offset, 3 s].
+            let per_sensor: usize = (0..s)
+                .map(|k| {
+                    (0..=3)
+                        .filter(|&t| f64::from(t) + k as f64 / s as f64 <= 3.0)
+                        .count()
+                })
+                .sum();
+            assert_eq!(row[2] as usize, per_sensor * n);
+            assert!(row[3] > 0.0 && row[4].is_finite() && row[5].is_finite());
+        }
+        assert!(
+            report
+                .rows
+                .iter()
+                .any(|r| r.key == "sweep_s3_n9_azimuth_offset_rmse")
+        );
+    }
+
+    #[test]
+    fn lists_are_refused_where_one_value_is_needed() {
+        // A list is checked value by value, and a single-value key (or `simulate`'s
+        // scene) refuses one with a usage error naming the key.
+        assert!(matches!(
+            ctx(&["targets=32,0"]),
+            Err(CliError::Usage(m)) if m.contains("targets")
+        ));
+        assert!(matches!(
+            ctx(&["targets=32,x"]),
+            Err(CliError::Usage(m)) if m.contains("not a number")
+        ));
+        let c = ctx(&["sensors=2,4"]).unwrap();
+        assert!(matches!(
+            Bias32.scene(&c.params),
+            Err(CliError::Usage(m)) if m.contains("sensors")
+        ));
+        let c = ctx(&["duration=3,4"]).unwrap();
+        assert!(matches!(Bias32.run(&c), Err(CliError::Usage(m)) if m.contains("duration")));
+    }
+
+    #[test]
+    fn simulated_plots_carry_the_true_bias() {
+        // `argus simulate bias-32`: the radars of the scene have β = [20 m, 2 mrad, 3e-5, 2e-4].
+        let c = ctx(&[]).unwrap();
+        let (_, sensors) = Bias32.scene(&c.params).unwrap();
+        assert_eq!(sensors.len(), 2);
+        for s in &sensors {
+            let b = s.bias();
+            assert!((b.range_offset - 20.0).abs() < 1e-12);
+            assert!((b.azimuth_offset - 2e-3).abs() < 1e-15);
+            assert!((b.range_scale - 3e-5).abs() < 1e-18);
+            assert!((b.azimuth_scale - 2e-4).abs() < 1e-18);
+        }
     }
 }
