@@ -9,6 +9,7 @@ mod gimpo;
 mod launch;
 mod maneuver_1d;
 mod rbs_landing;
+mod surveillance;
 
 use crate::scenario::Scenario;
 
@@ -23,6 +24,7 @@ pub(crate) fn all() -> Vec<Box<dyn Scenario>> {
         Box::new(launch::Launch),
         Box::new(maneuver_1d::Maneuver1d),
         Box::new(drag_bearing::DragBearing),
+        Box::new(surveillance::Surveillance),
         // One line per scenario, e.g. `Box::new(gimpo::Gimpo),`
     ]
 }
