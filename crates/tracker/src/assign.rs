@@ -35,12 +35,27 @@ pub(crate) fn gnn(rows: usize, cols: usize, edges: &[Edge], miss: &[f64]) -> Vec
             parent[a] = b;
         }
     }
-    // Group edges by their cluster's root.
-    let mut by_root: Vec<(usize, usize)> = edges
+    // Clusters of one edge (most of them when targets are apart) are settled at once;
+    // the other edges are grouped by their cluster's root, which needs a sort.
+    let mut count = vec![0_u32; rows + cols];
+    let roots: Vec<usize> = edges
         .iter()
-        .enumerate()
-        .map(|(k, &(r, _, _))| (find(&mut parent, r), k))
+        .map(|&(r, _, _)| {
+            let root = find(&mut parent, r);
+            count[root] += 1;
+            root
+        })
         .collect();
+    let mut by_root: Vec<(usize, usize)> = Vec::new();
+    for (k, (&root, &(r, c, cost))) in roots.iter().zip(edges).enumerate() {
+        if count[root] == 1 {
+            if cost < miss[r] {
+                out[r] = Some(c);
+            }
+        } else {
+            by_root.push((root, k));
+        }
+    }
     by_root.sort_unstable();
     let mut start = 0;
     let mut row_ids = Vec::new();

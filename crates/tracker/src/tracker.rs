@@ -459,7 +459,9 @@ impl Tracker {
                 (&self.filter, &self.models, &self.used, &mut self.edges);
             let mut any = false;
             self.grid.query(&centre, half, |j| {
-                if used[j] {
+                // The gate ellipse lies inside the box (|ν_i| ≤ √(γ S_ii) ≤ half_i):
+                // skip the plots of the cells met that are outside it before forming S.
+                if used[j] || !in_box(&plots[j].position, &centre, half) {
                     return;
                 }
                 let Ok(mp) = filter.predict_measurement(pred, &models[j]) else {
@@ -518,6 +520,9 @@ impl Tracker {
             ];
             let (filter, models) = (&self.filter, &self.models);
             self.grid.query(&centre, half, |j| {
+                if !in_box(&plots[j].position, &centre, half) {
+                    return;
+                }
                 let Ok(mp) = filter.predict_measurement(pred, &models[j]) else {
                     return;
                 };
@@ -734,6 +739,11 @@ fn imm_step(
         Ok(c) => (Some((c, ll)), Some(est)),
         Err(_) => (None, None),
     }
+}
+
+/// Whether `p` lies in the box `centre ± half`.
+fn in_box(p: &Vector<2>, centre: &Vector<2>, half: [f64; 2]) -> bool {
+    (p[0] - centre[0]).abs() <= half[0] && (p[1] - centre[1]).abs() <= half[1]
 }
 
 /// The largest plot covariance trace of a scan (for the initiation query box).
