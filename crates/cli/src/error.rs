@@ -77,6 +77,9 @@ pub(crate) enum CliError {
     /// The adaptive-R decoupled filter rejected a value.
     #[error("adaptive filter: {0}")]
     Adaptive(#[from] argus_adaptive::AdaptiveError),
+    /// The multi-target tracker rejected a configuration or a plot.
+    #[error("tracker: {0}")]
+    Tracker(#[from] argus_tracker::TrackerError),
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {

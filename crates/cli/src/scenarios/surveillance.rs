@@ -49,7 +49,7 @@ use argus_sim::{
     generate_plots, run_rng,
 };
 use argus_tracker::{
-    AssociationConfig, EstimatorConfig, Plot, TrackStatus, Tracker, TrackerConfig, TrackerError,
+    AssociationConfig, EstimatorConfig, Plot, TrackStatus, Tracker, TrackerConfig,
 };
 use rand_distr::{Distribution, OpenClosed01, Poisson, StandardUniform};
 use serde::{Deserialize, Serialize};
@@ -84,10 +84,6 @@ fn spec(key: &'static str, default: f64, min: f64, max: f64, help: &'static str)
         max,
         help,
     }
-}
-
-fn trk(e: TrackerError) -> CliError {
-    CliError::Usage(format!("surveillance: tracker: {e}"))
 }
 
 /// Everything a campaign shares between runs, from the parameters.
@@ -233,7 +229,7 @@ impl Setup {
             },
         ];
         for c in &trackers {
-            c.validate().map_err(trk)?;
+            c.validate()?;
         }
         let seed = p.get("truth_seed")?;
         Ok(Self {
@@ -374,7 +370,7 @@ impl Setup {
         scans: &[Vec<Plot>],
         truth: &[Vec<(TargetId, Vector<2>)>],
     ) -> Result<ConfigRun, CliError> {
-        let mut tracker = Tracker::new(config.clone()).map_err(trk)?;
+        let mut tracker = Tracker::new(config.clone())?;
         let mut scores = Vec::with_capacity(scans.len());
         let mut track_scans = Vec::with_capacity(scans.len());
         let mut tracked = vec![false; self.targets];
@@ -383,9 +379,7 @@ impl Setup {
         let mut estimates: Vec<Vector<2>> = Vec::new();
         for (k, (plots, truths)) in scans.iter().zip(truth).enumerate() {
             let t = self.time(k);
-            tracker
-                .process_scan(t, argus_tracker::SensorId(RADAR), plots)
-                .map_err(trk)?;
+            tracker.process_scan(t, argus_tracker::SensorId(RADAR), plots)?;
             // Deleted tracks are not scored: drop them so memory stays flat.
             drop(tracker.take_deleted());
             confirmed.clear();
