@@ -26,6 +26,25 @@ pub(crate) struct ParamSpec {
     pub(crate) help: &'static str,
 }
 
+impl ParamSpec {
+    /// A parameter `key` with its default, allowed range and one-line help.
+    pub(crate) const fn new(
+        key: &'static str,
+        default: f64,
+        min: f64,
+        max: f64,
+        help: &'static str,
+    ) -> Self {
+        Self {
+            key,
+            default,
+            min,
+            max,
+            help,
+        }
+    }
+}
+
 /// Validated parameter values (every key of the scenario's specs is present).
 ///
 /// `--set key=a,b,c` gives a key a list of values (each checked like a single one): the

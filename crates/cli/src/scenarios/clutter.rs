@@ -349,16 +349,6 @@ pub(crate) fn config(p: &Params, density: f64, snr_db: f64) -> Result<Config, Cl
     })
 }
 
-fn spec(key: &'static str, default: f64, min: f64, max: f64, help: &'static str) -> ParamSpec {
-    ParamSpec {
-        key,
-        default,
-        min,
-        max,
-        help,
-    }
-}
-
 impl Scenario for Clutter {
     fn name(&self) -> &'static str {
         "clutter"
@@ -374,39 +364,39 @@ impl Scenario for Clutter {
 
     fn params(&self) -> Vec<ParamSpec> {
         vec![
-            spec("steps", 100.0, 10.0, 10_000.0, "scans per run"),
-            spec("period", 1.0, 1e-3, 100.0, "scan period (s)"),
-            spec("sigma", 20.0, 1e-3, 1e4, "position noise σ per axis (m)"),
-            spec(
+            ParamSpec::new("steps", 100.0, 10.0, 10_000.0, "scans per run"),
+            ParamSpec::new("period", 1.0, 1e-3, 100.0, "scan period (s)"),
+            ParamSpec::new("sigma", 20.0, 1e-3, 1e4, "position noise σ per axis (m)"),
+            ParamSpec::new(
                 "sigma_a",
                 1.0,
                 0.0,
                 100.0,
                 "white-acceleration σ of truth and filters (m/s²)",
             ),
-            spec(
+            ParamSpec::new(
                 "p_d",
                 0.9,
                 0.05,
                 1.0,
                 "detection probability (sets the threshold per SNR)",
             ),
-            spec("gamma", 16.0, 1.0, 40.0, "gate threshold γ on νᵀS⁻¹ν"),
-            spec(
+            ParamSpec::new("gamma", 16.0, 1.0, 40.0, "gate threshold γ on νᵀS⁻¹ν"),
+            ParamSpec::new(
                 "half_width",
                 600.0,
                 10.0,
                 1e5,
                 "half-width of the clutter square around the target (m)",
             ),
-            spec(
+            ParamSpec::new(
                 "loss_bound",
                 150.0,
                 1.0,
                 1e6,
                 "track lost when position error exceeds this (m) ...",
             ),
-            spec(
+            ParamSpec::new(
                 "loss_scans",
                 5.0,
                 1.0,

@@ -56,16 +56,6 @@ fn run_seed(seed: u64, run: u64) -> u64 {
     seed.wrapping_sub(1).wrapping_shl(32).wrapping_add(run)
 }
 
-fn spec(key: &'static str, default: f64, min: f64, max: f64, help: &'static str) -> ParamSpec {
-    ParamSpec {
-        key,
-        default,
-        min,
-        max,
-        help,
-    }
-}
-
 /// Extracts one plotted quantity from a state.
 type Component = fn(&Vector<4>) -> f64;
 
@@ -89,55 +79,55 @@ impl Scenario for DragBearing {
     fn params(&self) -> Vec<ParamSpec> {
         let d = DragBearingConfig::default();
         vec![
-            spec("dt", d.dt, 0.01, 100.0, "bearing interval (s)"),
-            spec("duration", d.duration, 1.0, 1e5, "run length (s)"),
-            spec(
+            ParamSpec::new("dt", d.dt, 0.01, 100.0, "bearing interval (s)"),
+            ParamSpec::new("duration", d.duration, 1.0, 1e5, "run length (s)"),
+            ParamSpec::new(
                 "turn_time",
                 d.turn_time,
                 0.0,
                 1e5,
                 "time of the thrust change (s)",
             ),
-            spec("alpha", d.alpha, 0.0, 10.0, "drag coefficient alpha (1/m)"),
-            spec("q", d.q, 0.0, 1e3, "velocity white-noise density (m^2/s^3)"),
-            spec(
+            ParamSpec::new("alpha", d.alpha, 0.0, 10.0, "drag coefficient alpha (1/m)"),
+            ParamSpec::new("q", d.q, 0.0, 1e3, "velocity white-noise density (m^2/s^3)"),
+            ParamSpec::new(
                 "sigma_bearing_deg",
                 d.sigma_bearing.to_degrees(),
                 1e-4,
                 30.0,
                 "bearing noise (deg, 1 sigma)",
             ),
-            spec(
+            ParamSpec::new(
                 "sigma_pos0",
                 d.sigma_pos0,
                 1e-3,
                 1e5,
                 "prior position sigma per axis (m)",
             ),
-            spec(
+            ParamSpec::new(
                 "sigma_vel0",
                 d.sigma_vel0,
                 1e-4,
                 1e3,
                 "prior velocity sigma per axis (m/s)",
             ),
-            spec(
+            ParamSpec::new(
                 "substeps",
                 d.substeps as f64,
                 1.0,
                 1e4,
                 "RK4 substeps per prediction",
             ),
-            spec("m", d.max_age as f64, 0.0, 1000.0, "GLRT window M (plots)"),
-            spec(
+            ParamSpec::new("m", d.max_age as f64, 0.0, 1000.0, "GLRT window M (plots)"),
+            ParamSpec::new(
                 "n",
                 d.min_age as f64,
                 0.0,
                 1000.0,
                 "GLRT shortest onset age N (plots)",
             ),
-            spec("eta", d.eta, 1e-3, 1e6, "GLRT threshold"),
-            spec(
+            ParamSpec::new("eta", d.eta, 1e-3, 1e6, "GLRT threshold"),
+            ParamSpec::new(
                 "sigma_input",
                 d.sigma_input,
                 1e-4,

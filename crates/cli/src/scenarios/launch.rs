@@ -110,16 +110,6 @@ fn marginal(g: &Gaussian<9>) -> Result<Gaussian<6>, CliError> {
     Ok(Gaussian::from_symmetrized(m, &p)?)
 }
 
-fn spec(key: &'static str, default: f64, min: f64, max: f64, help: &'static str) -> ParamSpec {
-    ParamSpec {
-        key,
-        default,
-        min,
-        max,
-        help,
-    }
-}
-
 impl Scenario for Launch {
     fn name(&self) -> &'static str {
         "launch"
@@ -135,23 +125,23 @@ impl Scenario for Launch {
 
     fn params(&self) -> Vec<ParamSpec> {
         vec![
-            spec("period", 0.5, 0.01, 10.0, "radar data period (s)"),
-            spec("sigma_r", 5.0, 1e-3, 1e3, "range noise σ (m)"),
-            spec(
+            ParamSpec::new("period", 0.5, 0.01, 10.0, "radar data period (s)"),
+            ParamSpec::new("sigma_r", 5.0, 1e-3, 1e3, "range noise σ (m)"),
+            ParamSpec::new(
                 "sigma_ang_mrad",
                 0.2,
                 1e-4,
                 100.0,
                 "azimuth and elevation noise σ (mrad)",
             ),
-            spec(
+            ParamSpec::new(
                 "q_tilde",
                 1.0,
                 0.0,
                 1e4,
                 "EKF white-jerk spectral density (m²/s⁵)",
             ),
-            spec(
+            ParamSpec::new(
                 "launch_az_deg",
                 -30.0,
                 -180.0,

@@ -76,16 +76,6 @@ const RADAR: u32 = 0;
 /// plot per thousand scans over the coverage.
 const MIN_CLUTTER_PER_SCAN: f64 = 1e-3;
 
-fn spec(key: &'static str, default: f64, min: f64, max: f64, help: &'static str) -> ParamSpec {
-    ParamSpec {
-        key,
-        default,
-        min,
-        max,
-        help,
-    }
-}
-
 /// Everything a campaign shares between runs, from the parameters.
 pub(crate) struct Setup {
     targets: usize,
@@ -447,104 +437,104 @@ impl Scenario for Surveillance {
 
     fn params(&self) -> Vec<ParamSpec> {
         vec![
-            spec("targets", 200.0, 1.0, 100_000.0, "number of aircraft"),
-            spec("duration", 300.0, 10.0, 1e5, "time of the last scan (s)"),
-            spec("period", 5.0, 0.1, 60.0, "scan period (s)"),
-            spec(
+            ParamSpec::new("targets", 200.0, 1.0, 100_000.0, "number of aircraft"),
+            ParamSpec::new("duration", 300.0, 10.0, 1e5, "time of the last scan (s)"),
+            ParamSpec::new("period", 5.0, 0.1, 60.0, "scan period (s)"),
+            ParamSpec::new(
                 "range",
                 200_000.0,
                 1e3,
                 1e7,
                 "radius of the radar coverage (m)",
             ),
-            spec(
+            ParamSpec::new(
                 "start_radius",
                 110_000.0,
                 0.0,
                 1e7,
                 "aircraft start uniformly in a disc of this radius (m)",
             ),
-            spec("speed_min", 100.0, 0.0, 2000.0, "slowest aircraft (m/s)"),
-            spec("speed_max", 300.0, 0.0, 2000.0, "fastest aircraft (m/s)"),
-            spec("cv_min", 20.0, 0.0, 1e5, "shortest straight segment (s)"),
-            spec("cv_max", 120.0, 0.0, 1e5, "longest straight segment (s)"),
-            spec("turn_min", 10.0, 0.0, 1e5, "shortest turn (s)"),
-            spec("turn_max", 40.0, 0.0, 1e5, "longest turn (s)"),
-            spec(
+            ParamSpec::new("speed_min", 100.0, 0.0, 2000.0, "slowest aircraft (m/s)"),
+            ParamSpec::new("speed_max", 300.0, 0.0, 2000.0, "fastest aircraft (m/s)"),
+            ParamSpec::new("cv_min", 20.0, 0.0, 1e5, "shortest straight segment (s)"),
+            ParamSpec::new("cv_max", 120.0, 0.0, 1e5, "longest straight segment (s)"),
+            ParamSpec::new("turn_min", 10.0, 0.0, 1e5, "shortest turn (s)"),
+            ParamSpec::new("turn_max", 40.0, 0.0, 1e5, "longest turn (s)"),
+            ParamSpec::new(
                 "turn_rate_min",
                 1.0,
                 0.0,
                 30.0,
                 "slowest turn rate (deg/s), either sense",
             ),
-            spec(
+            ParamSpec::new(
                 "turn_rate_max",
                 3.0,
                 0.0,
                 30.0,
                 "fastest turn rate (deg/s), either sense",
             ),
-            spec("p_d", 0.9, 0.05, 1.0, "detection probability"),
-            spec("sigma_r", 50.0, 1e-3, 1e4, "range noise σ (m)"),
-            spec("sigma_az_deg", 0.1, 1e-6, 10.0, "azimuth noise σ (deg)"),
-            spec(
+            ParamSpec::new("p_d", 0.9, 0.05, 1.0, "detection probability"),
+            ParamSpec::new("sigma_r", 50.0, 1e-3, 1e4, "range noise σ (m)"),
+            ParamSpec::new("sigma_az_deg", 0.1, 1e-6, 10.0, "azimuth noise σ (deg)"),
+            ParamSpec::new(
                 "clutter",
                 500.0,
                 0.0,
                 1e6,
                 "mean false plots per scan, uniform over the coverage disc",
             ),
-            spec(
+            ParamSpec::new(
                 "cutoff",
                 1000.0,
                 1.0,
                 1e6,
                 "OSPA/GOSPA cut-off c, also the track-to-truth distance limit (m)",
             ),
-            spec("order", 2.0, 1.0, 10.0, "OSPA/GOSPA order p"),
-            spec(
+            ParamSpec::new("order", 2.0, 1.0, 10.0, "OSPA/GOSPA order p"),
+            ParamSpec::new(
                 "warmup",
                 30.0,
                 0.0,
                 1e5,
                 "scans before this time (s) are left out of the time averages",
             ),
-            spec(
+            ParamSpec::new(
                 "kf_sigma_a",
                 3.0,
                 0.0,
                 100.0,
                 "KF tracks' white-acceleration σ (m/s²)",
             ),
-            spec(
+            ParamSpec::new(
                 "imm_sigma_low",
                 0.5,
                 0.0,
                 100.0,
                 "IMM quiet mode's white-acceleration σ (m/s²)",
             ),
-            spec(
+            ParamSpec::new(
                 "imm_sigma_high",
                 10.0,
                 0.0,
                 100.0,
                 "IMM manoeuvre mode's white-acceleration σ (m/s²)",
             ),
-            spec(
+            ParamSpec::new(
                 "imm_p_stay",
                 0.95,
                 1e-3,
                 0.999,
                 "IMM probability of staying in a mode per scan",
             ),
-            spec(
+            ParamSpec::new(
                 "jpda_max_events",
                 1000.0,
                 1.0,
                 1e7,
                 "JPDA: largest cluster enumerated exactly (joint events)",
             ),
-            spec(
+            ParamSpec::new(
                 "truth_seed",
                 1.0,
                 0.0,
