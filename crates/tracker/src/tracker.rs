@@ -448,12 +448,7 @@ impl Tracker {
             let Some(pred) = self.predicted[k].as_ref() else {
                 continue;
             };
-            let p = pred.cov();
-            let centre = Vector::<2>::new(pred.mean()[0], pred.mean()[2]);
-            let half = [
-                (gamma * (p[(0, 0)] + r_max[0])).sqrt(),
-                (gamma * (p[(2, 2)] + r_max[1])).sqrt(),
-            ];
+            let (centre, half) = gate_box(pred, gamma, r_max);
             let row = rows.len();
             let (filter, models, used, edges) =
                 (&self.filter, &self.models, &self.used, &mut self.edges);
@@ -512,12 +507,7 @@ impl Tracker {
             let Some(pred) = self.predicted[k].as_ref() else {
                 continue;
             };
-            let p = pred.cov();
-            let centre = Vector::<2>::new(pred.mean()[0], pred.mean()[2]);
-            let half = [
-                (gamma * (p[(0, 0)] + r_max[0])).sqrt(),
-                (gamma * (p[(2, 2)] + r_max[1])).sqrt(),
-            ];
+            let (centre, half) = gate_box(pred, gamma, r_max);
             let (filter, models) = (&self.filter, &self.models);
             self.grid.query(&centre, half, |j| {
                 if !in_box(&plots[j].position, &centre, half) {
@@ -833,4 +823,17 @@ fn worst_position_sigma(p: &Matrix<4, 4>) -> f64 {
     let (a, b, c) = (p[(0, 0)], p[(0, 2)], p[(2, 2)]);
     let half = 0.5 * (a - c);
     (0.5 * (a + c) + (half * half + b * b).sqrt()).sqrt()
+}
+
+/// The axis-aligned box around a predicted track that holds its chi-square gate for any plot
+/// whose position variances are at most `r_max`: centre `(x, y)` and half-widths
+/// `√(γ (P_xx + R_max,xx))`, `√(γ (P_yy + R_max,yy))`.
+fn gate_box(pred: &Gaussian<4>, gamma: f64, r_max: [f64; 2]) -> (Vector<2>, [f64; 2]) {
+    let p = pred.cov();
+    let centre = Vector::<2>::new(pred.mean()[0], pred.mean()[2]);
+    let half = [
+        (gamma * (p[(0, 0)] + r_max[0])).sqrt(),
+        (gamma * (p[(2, 2)] + r_max[1])).sqrt(),
+    ];
+    (centre, half)
 }
