@@ -29,7 +29,7 @@ pub use chi2::{
 pub use error::MathError;
 pub use gaussian::Gaussian;
 pub use linalg::{
-    SpdFactor, check_finite_matrix, check_finite_vector, is_positive_definite, joseph_update,
+    SpdFactor, check_finite_matrix, check_finite_vector, is_positive_definite, joseph_update, joseph_update_from_cross,
     log_likelihood, symmetrize,
 };
 

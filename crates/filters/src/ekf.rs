@@ -4,7 +4,7 @@ use argus_core_math::{Gaussian, check_finite_matrix, check_finite_vector};
 use argus_motion_models::MotionModel;
 use argus_sensors::MeasurementModel;
 
-use crate::linearized::{checked_gaussian, first_order_measurement, linear_covariance_predict};
+use crate::linearized::{checked_gaussian, covariance_predict, first_order_measurement};
 use crate::second_order::second_order_terms;
 use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction, check_dt};
 
@@ -60,9 +60,9 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ekf<Mo> {
     fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
         check_dt(dt)?;
         let x = prior.mean();
-        let F = self.model.jacobian(x, dt);
         let Q = self.model.process_noise(x, dt);
-        linear_covariance_predict(self.model.propagate(x, dt), prior.cov(), &F, &Q)
+        let FPFt = self.model.propagate_covariance(x, prior.cov(), dt);
+        covariance_predict(self.model.propagate(x, dt), &FPFt, &Q)
     }
 
     /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.

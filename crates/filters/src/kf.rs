@@ -1,10 +1,10 @@
 //! The linear Kalman filter.
 
-use argus_core_math::{Gaussian, kernels};
+use argus_core_math::Gaussian;
 use argus_motion_models::LinearMotionModel;
 use argus_sensors::MeasurementModel;
 
-use crate::linearized::{first_order_measurement, linear_covariance_predict};
+use crate::linearized::{covariance_predict, first_order_measurement};
 use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction, check_dt};
 
 /// The Kalman filter on a linear motion model.
@@ -99,9 +99,10 @@ impl<const N: usize, Mo: LinearMotionModel<N>> GaussianFilter<N> for Kf<Mo> {
     #[allow(non_snake_case)]
     fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
         check_dt(dt)?;
-        let F = self.model.transition(dt);
-        let Q = self.model.process_noise(prior.mean(), dt);
-        linear_covariance_predict(kernels::mul(&F, prior.mean()), prior.cov(), &F, &Q)
+        let x = prior.mean();
+        let Q = self.model.process_noise(x, dt);
+        let FPFt = self.model.propagate_covariance(x, prior.cov(), dt);
+        covariance_predict(self.model.propagate(x, dt), &FPFt, &Q)
     }
 
     /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.

@@ -29,18 +29,19 @@ pub(crate) fn checked_gaussian<const N: usize>(
 }
 
 /// The linearised prediction `x⁻ = f`, `P⁻ = F P Fᵀ + Q` from a propagated mean,
-/// the transition (or Jacobian) `F` and the process noise `Q`.
+/// the propagated covariance `F P Fᵀ` (the motion model's
+/// [`argus_motion_models::MotionModel::propagate_covariance`], which exploits a
+/// structured `F`) and the process noise `Q`. A non-finite `F` shows as a non-finite
+/// predicted covariance.
 #[allow(non_snake_case)]
 #[inline]
-pub(crate) fn linear_covariance_predict<const N: usize>(
+pub(crate) fn covariance_predict<const N: usize>(
     mean: Vector<N>,
-    P: &Matrix<N, N>,
-    F: &Matrix<N, N>,
+    FPFt: &Matrix<N, N>,
     Q: &Matrix<N, N>,
 ) -> Result<Gaussian<N>, FilterError> {
-    check_finite_matrix(F, "transition matrix F")?;
     check_finite_matrix(Q, "process noise Q")?;
-    let cov = kernels::congruence(F, P) + Q;
+    let cov = FPFt + Q;
     checked_gaussian(mean, &cov, "predicted mean", "predicted covariance")
 }
 

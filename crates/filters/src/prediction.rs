@@ -1,8 +1,8 @@
 //! The measurement prediction computed once per step and the innovation of one plot.
 
 use argus_core_math::{
-    Gaussian, Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector, joseph_update,
-    kernels, unit_ball_volume,
+    Gaussian, Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector,
+    joseph_update_from_cross, kernels, unit_ball_volume,
 };
 use argus_sensors::MeasurementModel;
 
@@ -48,7 +48,10 @@ pub struct Innovation<const M: usize> {
 impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     /// Assembles a prediction from `ẑ`, `S`, the cross covariance `P_xz`, the
     /// measurement Jacobian (when the filter has one, for the Joseph form) and `R`.
-    /// The gain `K = P_xz S⁻¹` is computed here.
+    /// The gain `K = P_xz S⁻¹` is computed here. With a Jacobian and the Joseph form,
+    /// `P_xz` must be `P⁻ Hᵀ` of the covariance later passed to [`Self::update`] /
+    /// [`Self::posterior_cov`]: the Joseph update reuses it
+    /// ([`argus_core_math::joseph_update_from_cross`]).
     ///
     /// # Errors
     /// [`FilterError::Math`] when a value is non-finite or `S` is not positive definite.
@@ -193,7 +196,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     pub fn posterior_cov(&self, prior_cov: &Matrix<N, N>) -> Matrix<N, N> {
         match (self.form, self.jacobian.as_ref()) {
             (CovarianceForm::Joseph, Some(h)) => {
-                joseph_update(prior_cov, &self.gain, h, &self.noise)
+                joseph_update_from_cross(prior_cov, &self.gain, h, &self.cross, &self.noise)
             }
             _ => prior_cov - kernels::congruence(&self.gain, &self.s),
         }

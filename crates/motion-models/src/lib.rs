@@ -81,6 +81,16 @@ pub trait MotionModel<const N: usize> {
     /// The process-noise covariance `Q` over `dt` (evaluated at `x` where it depends on the state).
     fn process_noise(&self, x: &Vector<N>, dt: f64) -> Matrix<N, N>;
 
+    /// The covariance propagation `F P Fᵀ` with `F = ∂f/∂x` at `x` over `dt` (process
+    /// noise not included).
+    ///
+    /// The default forms the Jacobian and takes the full product; models with a
+    /// structured Jacobian (the block-diagonal CV and CA models) override it with a
+    /// cheaper computation of the same product. The result is exactly symmetric.
+    fn propagate_covariance(&self, x: &Vector<N>, p: &Matrix<N, N>, dt: f64) -> Matrix<N, N> {
+        argus_core_math::kernels::congruence(&self.jacobian(x, dt), p)
+    }
+
     /// The Hessians `∂²fᵢ/∂x²`, one per state component, for second-order filters.
     /// `None` when the model does not provide them (a second-order filter then reports an error).
     fn hessians(&self, _x: &Vector<N>, _dt: f64) -> Option<[Matrix<N, N>; N]> {
