@@ -46,17 +46,12 @@ pub(crate) fn gnn(rows: usize, cols: usize, edges: &[Edge], miss: &[f64]) -> Vec
             root
         })
         .collect();
-    let mut by_root: Vec<(usize, usize)> = Vec::new();
-    for (k, (&root, &(r, c, cost))) in roots.iter().zip(edges).enumerate() {
-        if count[root] == 1 {
-            if cost < miss[r] {
-                out[r] = Some(c);
-            }
-        } else {
-            by_root.push((root, k));
+    for (&root, &(r, c, cost)) in roots.iter().zip(edges) {
+        if count[root] == 1 && cost < miss[r] {
+            out[r] = Some(c);
         }
     }
-    by_root.sort_unstable();
+    let by_root = group_by_root(&roots, &count, |n| n > 1);
     let mut start = 0;
     let mut row_ids = Vec::new();
     let mut col_ids = Vec::new();
@@ -127,12 +122,16 @@ pub(crate) fn clusters(rows: usize, cols: usize, edges: &[(usize, usize)]) -> Ve
             parent[a] = b;
         }
     }
-    let mut by_root: Vec<(usize, usize)> = edges
+    let mut count = vec![0_u32; rows + cols];
+    let roots: Vec<usize> = edges
         .iter()
-        .enumerate()
-        .map(|(k, &(r, _))| (find(&mut parent, r), k))
+        .map(|&(r, _)| {
+            let root = find(&mut parent, r);
+            count[root] += 1;
+            root
+        })
         .collect();
-    by_root.sort_unstable();
+    let by_root = group_by_root(&roots, &count, |_| true);
     let mut out: Vec<Vec<usize>> = Vec::new();
     let mut last = usize::MAX;
     for (root, k) in by_root {
@@ -142,6 +141,28 @@ pub(crate) fn clusters(rows: usize, cols: usize, edges: &[(usize, usize)]) -> Ve
         }
         if let Some(g) = out.last_mut() {
             g.push(k);
+        }
+    }
+    out
+}
+
+/// `(root, edge)` for the edges whose cluster size `count[root]` passes `keep`, grouped
+/// by root in increasing root order and, within a root, increasing edge index: the order
+/// of sorting the pairs, got by a counting sort over the roots (`O(edges + nodes)`).
+fn group_by_root(
+    roots: &[usize],
+    count: &[u32],
+    keep: impl Fn(u32) -> bool,
+) -> Vec<(usize, usize)> {
+    let mut next = vec![0_usize; count.len() + 1];
+    for (root, &n) in count.iter().enumerate() {
+        next[root + 1] = next[root] + if keep(n) { n as usize } else { 0 };
+    }
+    let mut out = vec![(0, 0); next[count.len()]];
+    for (k, &root) in roots.iter().enumerate() {
+        if keep(count[root]) {
+            out[next[root]] = (root, k);
+            next[root] += 1;
         }
     }
     out
@@ -169,6 +190,26 @@ fn greedy(cluster: &[(usize, usize)], edges: &[Edge], miss: &[f64], out: &mut [O
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    proptest::proptest! {
+        #[test]
+        fn grouping_by_root_equals_sorting(roots in proptest::collection::vec(0usize..12, 0..80)) {
+            let mut count = vec![0_u32; 12];
+            for &r in &roots {
+                count[r] += 1;
+            }
+            for min in [1, 2] {
+                let mut sorted: Vec<(usize, usize)> = roots
+                    .iter()
+                    .enumerate()
+                    .filter(|&(_, &r)| count[r] >= min)
+                    .map(|(k, &r)| (r, k))
+                    .collect();
+                sorted.sort_unstable();
+                proptest::prop_assert_eq!(group_by_root(&roots, &count, |n| n >= min), sorted);
+            }
+        }
+    }
 
     #[test]
     fn optimal_not_greedy_and_misses() {
