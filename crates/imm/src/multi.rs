@@ -249,7 +249,26 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         self.grid.factors.map(|[a, b]| est.reference.scaled(a, b))
     }
 
-    /// One step with `plot` after `dt` seconds.
+    /// Mixing and mode-matched prediction of every IMM over `dt` seconds, as an estimate
+    /// (each IMM's [`crate::ImmPrediction::into_estimate`]: coasting through a missed
+    /// plot); the reference variances and `ν` are unchanged. [`MultiImm::update`] takes it.
+    ///
+    /// # Errors
+    /// As [`Imm::predict`]. `est` is never modified.
+    pub fn predict(
+        &self,
+        est: &MultiImmEstimate<N, R, K>,
+        dt: f64,
+    ) -> Result<MultiImmEstimate<N, R, K>, ImmError> {
+        let mut out = *est;
+        for (imm_est, src) in out.imms.iter_mut().zip(&est.imms) {
+            *imm_est = self.imm.predict(src, dt)?.into_estimate();
+        }
+        Ok(out)
+    }
+
+    /// One step with `plot` after `dt` seconds: [`MultiImm::predict`], then
+    /// [`MultiImm::update`].
     ///
     /// # Errors
     /// [`ImmError::InvalidInterval`] for `dt` not finite and positive; any error of the
@@ -262,12 +281,29 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         plot: &PolarPlot,
         conversion: &C,
     ) -> Result<MultiImmUpdate<N, R, K>, ImmError> {
+        self.update(&self.predict(est, dt)?, plot, conversion)
+    }
+
+    /// The update of a prediction from [`MultiImm::predict`] with `plot` (steps 1–5 above,
+    /// each IMM updated from its prediction).
+    ///
+    /// # Errors
+    /// Any error of the conversion or of an IMM (naming the mode);
+    /// [`ImmError::NoLikelihood`] if no hypothesis explains the plot. `predicted` is never
+    /// modified.
+    pub fn update<const M: usize, C: PlotConversion<N, M>>(
+        &self,
+        predicted: &MultiImmEstimate<N, R, K>,
+        plot: &PolarPlot,
+        conversion: &C,
+    ) -> Result<MultiImmUpdate<N, R, K>, ImmError> {
+        let est = predicted;
         let hyp = self.hypotheses(est);
         let mut imms = est.imms;
         let mut ll = [f64::NEG_INFINITY; K];
         for ((imm_est, h), l) in imms.iter_mut().zip(&hyp).zip(ll.iter_mut()) {
             let (meas, z) = conversion.convert(plot, h)?;
-            let upd = self.imm.step(imm_est, dt, &meas, &z)?;
+            let upd = self.imm.update(&imm_est.into_prediction(), &meas, &z)?;
             *imm_est = upd.estimate;
             *l = upd.log_likelihood;
         }
