@@ -30,20 +30,22 @@ fn scan(rng: &mut ChaCha8Rng, targets: &[(Vector<2>, Vector<2>)], t: f64, side: 
     let cov = Matrix::<2, 2>::identity() * (SIGMA * SIGMA);
     let mut plots: Vec<Plot> = targets
         .iter()
-        .map(|(p0, v)| Plot {
-            time: t,
-            sensor: SensorId(0),
-            position: p0 + v * t + Vector::<2>::new(SIGMA * gauss(rng), SIGMA * gauss(rng)),
-            covariance: cov,
+        .map(|(p0, v)| {
+            Plot::cartesian(
+                t,
+                SensorId(0),
+                p0 + v * t + Vector::<2>::new(SIGMA * gauss(rng), SIGMA * gauss(rng)),
+                cov,
+            )
         })
         .collect();
     for _ in 0..targets.len() / 10 {
-        plots.push(Plot {
-            time: t,
-            sensor: SensorId(0),
-            position: Vector::<2>::new(side * rng.random::<f64>(), side * rng.random::<f64>()),
-            covariance: cov,
-        });
+        plots.push(Plot::cartesian(
+            t,
+            SensorId(0),
+            Vector::<2>::new(side * rng.random::<f64>(), side * rng.random::<f64>()),
+            cov,
+        ));
     }
     plots
 }

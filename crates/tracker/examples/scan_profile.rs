@@ -40,20 +40,22 @@ fn scan(rng: &mut Rng, targets: &[(Vector<2>, Vector<2>)], t: f64, side: f64) ->
     let cov = Matrix::<2, 2>::identity() * (SIGMA * SIGMA);
     let mut plots: Vec<Plot> = targets
         .iter()
-        .map(|(p0, v)| Plot {
-            time: t,
-            sensor: SensorId(0),
-            position: p0 + v * t + Vector::<2>::new(SIGMA * rng.gauss(), SIGMA * rng.gauss()),
-            covariance: cov,
+        .map(|(p0, v)| {
+            Plot::cartesian(
+                t,
+                SensorId(0),
+                p0 + v * t + Vector::<2>::new(SIGMA * rng.gauss(), SIGMA * rng.gauss()),
+                cov,
+            )
         })
         .collect();
     for _ in 0..targets.len() / 10 {
-        plots.push(Plot {
-            time: t,
-            sensor: SensorId(0),
-            position: Vector::<2>::new(side * rng.uniform(), side * rng.uniform()),
-            covariance: cov,
-        });
+        plots.push(Plot::cartesian(
+            t,
+            SensorId(0),
+            Vector::<2>::new(side * rng.uniform(), side * rng.uniform()),
+            cov,
+        ));
     }
     plots
 }

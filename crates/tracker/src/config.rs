@@ -6,8 +6,9 @@ use crate::{SensorId, TrackerError};
 /// defaults below) and change the public fields; [`crate::Tracker::new`] validates it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrackerConfig {
-    /// The sensors whose plots are accepted (at least one).
-    pub sensors: Vec<SensorId>,
+    /// The sensors whose plots are accepted (at least one, ids distinct): where each
+    /// stands and, for polar plots, its noise.
+    pub sensors: Vec<SensorConfig>,
     /// White-noise acceleration standard deviation of each track's CV model (m/s²).
     /// Default 2.
     pub sigma_a: f64,
@@ -45,6 +46,90 @@ pub struct TrackerConfig {
     pub association: AssociationConfig,
 }
 
+/// One sensor: its id, its position and, if it sends polar plots, their noise.
+///
+/// A [`crate::Plot::cartesian`] plot is a global position with its own covariance and does
+/// not use the position or the noise. A [`crate::Plot::polar`] plot `(r, θ)` is relative to
+/// [`SensorConfig::position`] (θ counter-clockwise from +x) with the standard deviations of
+/// [`SensorConfig::polar_noise`]; a sensor without them cannot send polar plots.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SensorConfig {
+    /// Its id.
+    pub id: SensorId,
+    /// Its position `(x, y)` (m), finite.
+    pub position: [f64; 2],
+    /// The noise of its polar plots (`None`: it sends Cartesian plots only).
+    pub polar_noise: Option<PolarNoise>,
+}
+
+/// Standard deviations of a polar plot's range and azimuth.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PolarNoise {
+    /// `σ_r` (m), finite and positive.
+    pub sigma_range: f64,
+    /// `σ_θ` (rad), finite and positive.
+    pub sigma_azimuth: f64,
+}
+
+impl SensorConfig {
+    /// A sensor of Cartesian plots only (position: the origin, unused).
+    #[must_use]
+    pub fn cartesian(id: SensorId) -> Self {
+        Self {
+            id,
+            position: [0.0, 0.0],
+            polar_noise: None,
+        }
+    }
+
+    /// A polar radar at `position` (m) with `σ_r` (m) and `σ_θ` (rad); it may also send
+    /// Cartesian plots. Checked by [`crate::Tracker::new`].
+    #[must_use]
+    pub fn polar(id: SensorId, position: [f64; 2], sigma_range: f64, sigma_azimuth: f64) -> Self {
+        Self {
+            id,
+            position,
+            polar_noise: Some(PolarNoise {
+                sigma_range,
+                sigma_azimuth,
+            }),
+        }
+    }
+
+    fn validate(&self) -> Result<(), TrackerError> {
+        let bad = |field, value: f64, reason| {
+            Err(TrackerError::InvalidConfig {
+                field,
+                value,
+                reason,
+            })
+        };
+        for v in self.position {
+            if !v.is_finite() {
+                return bad("sensors.position", v, "must be finite");
+            }
+        }
+        if let Some(n) = &self.polar_noise {
+            for (field, v) in [
+                ("sensors.polar_noise.sigma_range", n.sigma_range),
+                ("sensors.polar_noise.sigma_azimuth", n.sigma_azimuth),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return bad(field, v, "must be finite and positive");
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl From<SensorId> for SensorConfig {
+    /// [`SensorConfig::cartesian`].
+    fn from(id: SensorId) -> Self {
+        Self::cartesian(id)
+    }
+}
+
 /// Association of plots to confirmed tracks (tentative tracks always use GNN).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum AssociationConfig {
@@ -54,8 +139,9 @@ pub enum AssociationConfig {
     /// exact events up to `max_exact_events` per cluster, Fitzgerald's cheap JPDA beyond
     /// (see the crate docs). Every plot in a confirmed track's gate is spent (no track is
     /// initiated from it). A track is updated with the moment-matched mixture of its
-    /// per-plot Kalman updates and its prediction, weighted by the marginals. Not
-    /// available with the IMM estimator yet.
+    /// per-plot Kalman (or EKF) updates and its prediction, weighted by the marginals.
+    /// With [`EstimatorConfig::ImmCv2`] this is IMM-JPDA (see the crate docs); not
+    /// available with [`EstimatorConfig::MultiImm`].
     Jpda {
         /// Detection probability `P_D` in (0, 1].
         p_detection: f64,
@@ -69,8 +155,13 @@ pub enum AssociationConfig {
 /// The per-track estimator.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum EstimatorConfig {
-    /// A Kalman filter on the CV model with [`TrackerConfig::sigma_a`].
+    /// A Kalman filter on the CV model with [`TrackerConfig::sigma_a`], updated with the
+    /// (converted) Cartesian plots.
     Kf,
+    /// An extended Kalman filter on the same CV model ([`argus_filters::Ekf`]): polar plots
+    /// update it directly in `(r, θ)` through [`argus_sensors::Polar2D`] at the sensor's
+    /// position, and are gated with its own `S`; Cartesian plots use the linear update.
+    Ekf,
     /// A two-mode IMM of CV Kalman filters, a quiet mode (`sigma_a_low`) and a
     /// manoeuvre mode (`sigma_a_high`), with probability `p_stay` of staying in a mode
     /// from one scan to the next, both modes equally likely at initiation. Gating uses
@@ -83,7 +174,32 @@ pub enum EstimatorConfig {
         /// Probability of staying in a mode, in (0, 1).
         p_stay: f64,
     },
+    /// Seed 000's multi-IMM measurement-noise estimator ([`argus_imm::MultiImm`]) per
+    /// track: [`MULTI_IMM_HYPOTHESES`] IMMs (each the two-mode CV IMM of
+    /// [`EstimatorConfig::ImmCv2`]) assume the variances `(1 + (m − 2) p) σ²_ref`
+    /// (eq 14, [`argus_imm::NoiseGrid::common`]); each polar plot updates all of them
+    /// and moves the track's reference `σ²_ref` (eq 13), which starts at the configured
+    /// polar noise of the sensor of its initiating plot and is read by
+    /// [`crate::Track::noise_estimate`]. Every sensor must have polar noise and every plot
+    /// must be polar; all sensors feeding a track share its one estimate. Gating and
+    /// initiation use the plot converted with the configured noise; GNN only.
+    MultiImm {
+        /// Acceleration standard deviation of the quiet mode (m/s²).
+        sigma_a_low: f64,
+        /// Acceleration standard deviation of the manoeuvre mode (m/s²).
+        sigma_a_high: f64,
+        /// Probability of staying in a mode, in (0, 1).
+        p_stay: f64,
+        /// Grid spacing `p` of the noise hypotheses, in (0, 0.5) (the paper: 0.1).
+        grid_spacing: f64,
+        /// Largest relative change of the reference per plot, in (0, 1), or `None`
+        /// (the paper: 5 %).
+        clip: Option<f64>,
+    },
 }
+
+/// Number of noise hypotheses `K` of [`EstimatorConfig::MultiImm`] (seed 000: 5).
+pub const MULTI_IMM_HYPOTHESES: usize = 5;
 
 /// Track-score management: each track carries the log-likelihood ratio `L` of "target"
 /// against "false track", tested sequentially (Wald's SPRT).
@@ -169,11 +285,12 @@ impl ScoreConfig {
 }
 
 impl TrackerConfig {
-    /// The defaults listed on each field, for the given sensors.
+    /// The defaults listed on each field, for the given sensors (a [`SensorId`] alone is
+    /// a Cartesian sensor, [`SensorConfig::cartesian`]).
     #[must_use]
-    pub fn new(sensors: Vec<SensorId>) -> Self {
+    pub fn new<S: Into<SensorConfig>>(sensors: impl IntoIterator<Item = S>) -> Self {
         Self {
-            sensors,
+            sensors: sensors.into_iter().map(Into::into).collect(),
             sigma_a: 2.0,
             gate_probability: 0.99,
             max_speed: 350.0,
@@ -204,6 +321,16 @@ impl TrackerConfig {
         };
         if self.sensors.is_empty() {
             return bad("sensors", 0.0, "at least one sensor is needed");
+        }
+        for (i, s) in self.sensors.iter().enumerate() {
+            s.validate()?;
+            if self.sensors[..i].iter().any(|o| o.id == s.id) {
+                return bad(
+                    "sensors.id",
+                    f64::from(s.id.0),
+                    "sensor ids must be distinct",
+                );
+            }
         }
         let positive = [
             ("max_speed", self.max_speed),
@@ -244,12 +371,43 @@ impl TrackerConfig {
         if let Some(score) = &self.score {
             score.validate()?;
         }
-        if let EstimatorConfig::ImmCv2 {
-            sigma_a_low,
-            sigma_a_high,
-            p_stay,
-        } = self.estimator
-        {
+        let motion = match self.estimator {
+            EstimatorConfig::Kf | EstimatorConfig::Ekf => None,
+            EstimatorConfig::ImmCv2 {
+                sigma_a_low,
+                sigma_a_high,
+                p_stay,
+            } => Some((sigma_a_low, sigma_a_high, p_stay)),
+            EstimatorConfig::MultiImm {
+                sigma_a_low,
+                sigma_a_high,
+                p_stay,
+                grid_spacing,
+                clip,
+            } => {
+                if !(grid_spacing.is_finite() && grid_spacing > 0.0 && grid_spacing < 0.5) {
+                    return bad(
+                        "estimator.grid_spacing",
+                        grid_spacing,
+                        "must lie in (0, 0.5)",
+                    );
+                }
+                if let Some(c) = clip
+                    && !(c.is_finite() && c > 0.0 && c < 1.0)
+                {
+                    return bad("estimator.clip", c, "must lie in (0, 1)");
+                }
+                if let Some(s) = self.sensors.iter().find(|s| s.polar_noise.is_none()) {
+                    return bad(
+                        "sensors.polar_noise",
+                        f64::from(s.id.0),
+                        "the multi-IMM needs every sensor's polar noise",
+                    );
+                }
+                Some((sigma_a_low, sigma_a_high, p_stay))
+            }
+        };
+        if let Some((sigma_a_low, sigma_a_high, p_stay)) = motion {
             for (field, v) in [
                 ("estimator.sigma_a_low", sigma_a_low),
                 ("estimator.sigma_a_high", sigma_a_high),
@@ -281,11 +439,11 @@ impl TrackerConfig {
             if max_exact_events == 0 {
                 return bad("association.max_exact_events", 0.0, "must be at least 1");
             }
-            if self.estimator != EstimatorConfig::Kf {
+            if matches!(self.estimator, EstimatorConfig::MultiImm { .. }) {
                 return bad(
                     "association",
                     0.0,
-                    "JPDA with the IMM estimator is not built yet",
+                    "JPDA with the multi-IMM estimator is not built",
                 );
             }
         }

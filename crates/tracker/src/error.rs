@@ -43,7 +43,7 @@ pub enum TrackerError {
         /// The sensor named.
         sensor: SensorId,
     },
-    /// A plot's time, position or covariance entry is NaN or infinite.
+    /// A plot's time, position, covariance, range or azimuth is NaN or infinite.
     #[error("plot {index} from sensor {sensor:?} has a non-finite {what}")]
     NonFinite {
         /// Index of the plot in the slice given.
@@ -65,6 +65,53 @@ pub enum TrackerError {
         /// What the check found.
         source: SensorError,
     },
+    /// A polar plot's range is zero or negative.
+    #[error("plot {index} at t = {time} s from sensor {sensor:?}: range {range} m is not positive")]
+    NonPositiveRange {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// Its time (s).
+        time: f64,
+        /// Its sensor.
+        sensor: SensorId,
+        /// The range (m).
+        range: f64,
+    },
+    /// A polar plot comes from a sensor configured without polar noise.
+    #[error("plot {index} at t = {time} s is polar but sensor {sensor:?} has no polar noise")]
+    NoPolarNoise {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// Its time (s).
+        time: f64,
+        /// Its sensor.
+        sensor: SensorId,
+    },
+    /// A Cartesian plot given to a tracker whose estimator needs polar plots (the
+    /// multi-IMM).
+    #[error(
+        "plot {index} at t = {time} s from sensor {sensor:?} is Cartesian; the multi-IMM needs polar plots"
+    )]
+    NotPolar {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// Its time (s).
+        time: f64,
+        /// Its sensor.
+        sensor: SensorId,
+    },
+    /// A polar plot could not be converted to a Cartesian position.
+    #[error("plot {index} at t = {time} s from sensor {sensor:?}: conversion failed: {source}")]
+    Conversion {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// Its time (s).
+        time: f64,
+        /// Its sensor.
+        sensor: SensorId,
+        /// What the conversion found.
+        source: SensorError,
+    },
     /// The plots given to one scan do not share one time and one sensor.
     #[error("plot {index} does not share the scan's time {time} s and sensor {sensor:?}")]
     MixedScan {
@@ -78,6 +125,9 @@ pub enum TrackerError {
     /// The motion model rejected its parameters.
     #[error(transparent)]
     Motion(#[from] MotionError),
+    /// The IMM or multi-IMM rejected its parameters.
+    #[error(transparent)]
+    Imm(#[from] argus_imm::ImmError),
     /// The gate rejected its parameters.
     #[error(transparent)]
     Association(#[from] AssociationError),

@@ -81,7 +81,7 @@
 //! let r = Matrix::<2, 2>::identity() * 900.0;
 //! for k in 0..6 {
 //!     let t = 5.0 * f64::from(k);
-//!     let plot = Plot { time: t, sensor: SensorId(0), position: Vector::<2>::new(200.0 * t, 0.0), covariance: r };
+//!     let plot = Plot::cartesian(t, SensorId(0), Vector::<2>::new(200.0 * t, 0.0), r);
 //!     tracker.process(&[plot])?;
 //! }
 //! // Initiated at the 2nd plot, confirmed at the 3rd (3 of 4).
@@ -94,12 +94,18 @@
 mod assign;
 mod config;
 mod error;
+mod estimator;
 mod grid;
 mod jpda;
+mod plot;
 mod track;
 mod tracker;
 
-pub use config::{AssociationConfig, EstimatorConfig, ScoreConfig, TrackerConfig};
+pub use config::{
+    AssociationConfig, EstimatorConfig, MULTI_IMM_HYPOTHESES, PolarNoise, ScoreConfig,
+    SensorConfig, TrackerConfig,
+};
 pub use error::TrackerError;
+pub use plot::{Plot, PlotMeasurement};
 pub use track::{DeletionReason, SensorId, Track, TrackId, TrackStatus};
-pub use tracker::{Plot, ScanReport, Tracker};
+pub use tracker::{ScanReport, Tracker};

@@ -1,7 +1,12 @@
 //! Tracks, their ids and statuses.
 
 use argus_core_math::Gaussian;
-use argus_imm::ImmEstimate;
+use argus_imm::{ImmEstimate, MultiImmEstimate, NoiseVariances};
+
+use crate::config::MULTI_IMM_HYPOTHESES;
+
+/// A track's multi-IMM state (boxed in the track: it is large).
+pub(crate) type MultiState = MultiImmEstimate<4, 2, MULTI_IMM_HYPOTHESES>;
 
 /// A track's id: numbered from 0 in order of initiation and never reused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -55,6 +60,7 @@ pub struct Track {
     pub(crate) score: f64,
     pub(crate) peak_score: f64,
     pub(crate) imm: Option<ImmEstimate<4, 2>>,
+    pub(crate) multi: Option<Box<MultiState>>,
 }
 
 impl Track {
@@ -119,10 +125,23 @@ impl Track {
         self.last_hit
     }
 
-    /// The IMM mode probabilities (quiet, manoeuvre) when the estimator is an IMM.
+    /// The IMM mode probabilities (quiet, manoeuvre) when the estimator is an IMM or a
+    /// multi-IMM (for the latter `Σₘ νᵐ μⱼᵐ`).
     #[must_use]
     pub fn mode_probabilities(&self) -> Option<[f64; 2]> {
-        self.imm.as_ref().map(ImmEstimate::mode_probabilities)
+        match (&self.imm, &self.multi) {
+            (Some(imm), _) => Some(imm.mode_probabilities()),
+            (None, Some(m)) => Some(m.mode_probabilities()),
+            (None, None) => None,
+        }
+    }
+
+    /// The multi-IMM's current measurement-noise estimate `(σ_r², σ_θ²)` (its reference
+    /// variances, seed 000 eq 13) when the estimator is
+    /// [`crate::EstimatorConfig::MultiImm`].
+    #[must_use]
+    pub fn noise_estimate(&self) -> Option<NoiseVariances> {
+        self.multi.as_ref().map(|m| *m.reference())
     }
 
     /// Its track score (log-likelihood ratio), kept when

@@ -2,32 +2,21 @@
 
 use argus_association::Gate;
 use argus_core_math::{Gaussian, Matrix, Vector};
-use argus_filters::{GaussianFilter, Kf, two_point_cv2};
-use argus_imm::{Imm, ImmEstimate, ImmPrediction, MarkovMatrix, moment_match};
-use argus_motion_models::Cv2D;
-use argus_sensors::CartesianPosition;
+use argus_filters::{MeasurementPrediction, two_point_cv2};
+use argus_imm::{ImmEstimate, ImmPrediction, MultiImmEstimate, moment_match};
 
 use crate::assign::{Edge, clusters, gnn};
+use crate::estimator::{
+    Estimators, gate_box, imm_gate_box, imm_innovation, imm_jpda_update, imm_step, innovation,
+    jpda_update, multi_update, polar_half,
+};
 use crate::grid::Grid;
 use crate::jpda::marginals;
+use crate::plot::{ScanPoint, SensorModel};
 use crate::{
-    AssociationConfig, DeletionReason, EstimatorConfig, SensorId, Track, TrackId, TrackStatus,
-    TrackerConfig, TrackerError,
+    AssociationConfig, DeletionReason, Plot, SensorId, Track, TrackId, TrackStatus, TrackerConfig,
+    TrackerError,
 };
-
-/// One Cartesian position plot `(x, y)` with its covariance (e.g. a converted polar
-/// plot), from one sensor at one time.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Plot {
-    /// Time (s).
-    pub time: f64,
-    /// The sensor that made it.
-    pub sensor: SensorId,
-    /// Position `(x, y)` (m).
-    pub position: Vector<2>,
-    /// Its covariance (m²): finite, symmetric, positive definite.
-    pub covariance: Matrix<2, 2>,
-}
 
 /// What one scan did.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -58,8 +47,8 @@ struct Initiator {
 #[derive(Debug, Clone)]
 pub struct Tracker {
     config: TrackerConfig,
-    filter: Kf<Cv2D>,
-    imm: Option<Imm<Kf<Cv2D>, 4, 2>>,
+    est: Estimators,
+    sensors: Vec<SensorModel>,
     gate: Gate,
     time: Option<f64>,
     next_id: u64,
@@ -67,10 +56,14 @@ pub struct Tracker {
     deleted: Vec<Track>,
     initiators: Vec<Initiator>,
     // Scratch buffers reused from scan to scan.
+    /// The current scan's sensor (index into `sensors`).
+    scan_sensor: usize,
     grid: Grid,
-    models: Vec<CartesianPosition<4, 2>>,
+    points: Vec<ScanPoint>,
     predicted: Vec<Option<Gaussian<4>>>,
     imm_predicted: Vec<Option<ImmPrediction<4, 2>>>,
+    /// EKF on polar plots: each track's measurement prediction in `(r, θ)`.
+    polar_mp: Vec<Option<MeasurementPrediction<4, 2>>>,
     assigned: Vec<Option<usize>>,
     used: Vec<bool>,
     edges: Vec<Edge>,
@@ -86,49 +79,30 @@ impl Tracker {
     /// [`TrackerError::InvalidConfig`] naming the first bad field.
     pub fn new(config: TrackerConfig) -> Result<Self, TrackerError> {
         config.validate()?;
-        let filter = Kf::new(Cv2D::discrete(config.sigma_a)?);
-        let imm = match config.estimator {
-            EstimatorConfig::Kf => None,
-            EstimatorConfig::ImmCv2 {
-                sigma_a_low,
-                sigma_a_high,
-                p_stay,
-            } => {
-                let markov = MarkovMatrix::new([[p_stay, 1.0 - p_stay], [1.0 - p_stay, p_stay]])
-                    .map_err(|_| TrackerError::InvalidConfig {
-                        field: "estimator.p_stay",
-                        value: p_stay,
-                        reason: "does not make a Markov matrix",
-                    })?;
-                let filters = [
-                    Kf::new(Cv2D::discrete(sigma_a_low)?),
-                    Kf::new(Cv2D::discrete(sigma_a_high)?),
-                ];
-                Some(
-                    Imm::new(filters, markov).map_err(|_| TrackerError::InvalidConfig {
-                        field: "estimator",
-                        value: p_stay,
-                        reason: "the IMM rejected it",
-                    })?,
-                )
-            }
-        };
+        let est = Estimators::new(&config)?;
+        let sensors = config
+            .sensors
+            .iter()
+            .map(SensorModel::new)
+            .collect::<Result<Vec<_>, _>>()?;
         let gate = Gate::from_probability(config.gate_probability, 2)?;
         let grid = Grid::new(config.grid_cell);
         Ok(Self {
             config,
-            filter,
-            imm,
+            est,
+            sensors,
             gate,
             time: None,
             next_id: 0,
             tracks: Vec::new(),
             deleted: Vec::new(),
             initiators: Vec::new(),
+            scan_sensor: 0,
             grid,
-            models: Vec::new(),
+            points: Vec::new(),
             predicted: Vec::new(),
             imm_predicted: Vec::new(),
+            polar_mp: Vec::new(),
             assigned: Vec::new(),
             used: Vec::new(),
             edges: Vec::new(),
@@ -172,52 +146,51 @@ impl Tracker {
         std::mem::take(&mut self.deleted)
     }
 
-    /// Checks one plot against the configuration and the time before it, and builds its
-    /// measurement model.
+    /// Checks a plot's (or a scan's) time and sensor against the configuration and the
+    /// time before it; returns the sensor's index.
+    fn check_time_sensor(
+        &self,
+        index: usize,
+        time: f64,
+        sensor: SensorId,
+        previous: Option<f64>,
+    ) -> Result<usize, TrackerError> {
+        if !time.is_finite() {
+            return Err(TrackerError::NonFinite {
+                index,
+                sensor,
+                what: "time",
+            });
+        }
+        let Some(s) = self.sensors.iter().position(|s| s.id == sensor) else {
+            return Err(TrackerError::UnknownSensor {
+                index,
+                time,
+                sensor,
+            });
+        };
+        if let Some(previous) = previous
+            && time < previous
+        {
+            return Err(TrackerError::TimeOrder {
+                index,
+                time,
+                previous,
+            });
+        }
+        Ok(s)
+    }
+
+    /// Checks one plot against the configuration and the time before it, and makes its
+    /// scan point (a polar plot converted).
     fn check_plot(
         &self,
         index: usize,
         plot: &Plot,
         previous: Option<f64>,
-    ) -> Result<CartesianPosition<4, 2>, TrackerError> {
-        let non_finite = |what| TrackerError::NonFinite {
-            index,
-            sensor: plot.sensor,
-            what,
-        };
-        if !plot.time.is_finite() {
-            return Err(non_finite("time"));
-        }
-        if !self.config.sensors.contains(&plot.sensor) {
-            return Err(TrackerError::UnknownSensor {
-                index,
-                time: plot.time,
-                sensor: plot.sensor,
-            });
-        }
-        if let Some(previous) = previous
-            && plot.time < previous
-        {
-            return Err(TrackerError::TimeOrder {
-                index,
-                time: plot.time,
-                previous,
-            });
-        }
-        if !plot.position.iter().all(|v| v.is_finite()) {
-            return Err(non_finite("position"));
-        }
-        if !plot.covariance.iter().all(|v| v.is_finite()) {
-            return Err(non_finite("covariance"));
-        }
-        CartesianPosition::<4, 2>::cv(plot.covariance).map_err(|source| {
-            TrackerError::PlotCovariance {
-                index,
-                time: plot.time,
-                sensor: plot.sensor,
-                source,
-            }
-        })
+    ) -> Result<ScanPoint, TrackerError> {
+        let s = self.check_time_sensor(index, plot.time, plot.sensor, previous)?;
+        self.sensors[s].point(index, plot, self.est.multi.is_none())
     }
 
     /// Processes a time-ordered stream of plots: consecutive plots with the same time
@@ -228,8 +201,10 @@ impl Tracker {
     ///
     /// # Errors
     /// [`TrackerError::TimeOrder`], [`TrackerError::UnknownSensor`],
-    /// [`TrackerError::NonFinite`], [`TrackerError::PlotCovariance`] naming the first
-    /// bad plot; the tracker is then unchanged.
+    /// [`TrackerError::NonFinite`], [`TrackerError::PlotCovariance`],
+    /// [`TrackerError::NonPositiveRange`], [`TrackerError::NoPolarNoise`],
+    /// [`TrackerError::NotPolar`], [`TrackerError::Conversion`] naming the first bad
+    /// plot; the tracker is then unchanged.
     pub fn process(&mut self, plots: &[Plot]) -> Result<Vec<ScanReport>, TrackerError> {
         let mut previous = self.time;
         for (index, plot) in plots.iter().enumerate() {
@@ -253,12 +228,12 @@ impl Tracker {
     /// Processes one scan: every plot of `plots` must have time `time` and sensor
     /// `sensor` (an empty slice is a scan that saw nothing).
     ///
-    /// Steps: predict every live track to `time`; gate the plots near each confirmed
-    /// track (grid query, then the chi-square gate on the innovation) and assign by GNN;
-    /// the same for tentative tracks with the plots left; update, count hits and
-    /// misses, confirm and delete; pair the plots still unused with earlier unused plots
-    /// through the velocity gate to initiate tentative tracks; keep the rest as
-    /// initiators.
+    /// Steps: convert the polar plots; predict every live track to `time`; gate the plots
+    /// near each confirmed track (grid query, then the chi-square gate on the innovation)
+    /// and assign by GNN (or weigh by JPDA); the same for tentative tracks with the plots
+    /// left; update, count hits and misses, confirm and delete; pair the plots still
+    /// unused with earlier unused plots through the velocity gate to initiate tentative
+    /// tracks; keep the rest as initiators.
     ///
     /// # Errors
     /// As [`Tracker::process`], and [`TrackerError::MixedScan`] for a plot of another
@@ -270,62 +245,65 @@ impl Tracker {
         sensor: SensorId,
         plots: &[Plot],
     ) -> Result<ScanReport, TrackerError> {
-        let scan_plot = Plot {
-            time,
-            sensor,
-            position: Vector::<2>::zeros(),
-            covariance: Matrix::<2, 2>::identity(),
-        };
-        self.check_plot(0, &scan_plot, self.time)?;
-        let mut models = std::mem::take(&mut self.models);
-        models.clear();
+        let s = self.check_time_sensor(0, time, sensor, self.time)?;
+        let mut points = std::mem::take(&mut self.points);
+        points.clear();
         for (index, plot) in plots.iter().enumerate() {
             if plot.sensor != sensor || !plot.time.total_cmp(&time).is_eq() {
-                self.models = models;
+                self.points = points;
                 return Err(TrackerError::MixedScan {
                     index,
                     time,
                     sensor,
                 });
             }
-            match self.check_plot(index, plot, self.time) {
-                Ok(m) => models.push(m),
+            match self.sensors[s].point(index, plot, self.est.multi.is_none()) {
+                Ok(p) => points.push(p),
                 Err(e) => {
-                    self.models = models;
+                    self.points = points;
                     return Err(e);
                 }
             }
         }
-        self.models = models;
-        Ok(self.run_scan(time, plots))
+        self.points = points;
+        self.scan_sensor = s;
+        Ok(self.run_scan(time))
     }
 
-    /// The scan proper, on checked plots (their models are in `self.models`).
-    fn run_scan(&mut self, time: f64, plots: &[Plot]) -> ScanReport {
+    /// The scan proper, on checked plots (in `self.points`).
+    fn run_scan(&mut self, time: f64) -> ScanReport {
+        let n_plots = self.points.len();
         let mut report = ScanReport {
             time,
-            plots: plots.len(),
+            plots: n_plots,
             ..ScanReport::default()
         };
         self.time = Some(time);
-        self.grid.rebuild(plots.iter().map(|p| p.position));
+        self.grid.rebuild(self.points.iter().map(|p| p.position));
         self.used.clear();
-        self.used.resize(plots.len(), false);
+        self.used.resize(n_plots, false);
         // Largest plot variance per axis, for the grid query boxes.
-        let r_max = plots.iter().fold([0.0_f64; 2], |acc, p| {
+        let r_max = self.points.iter().fold([0.0_f64; 2], |acc, p| {
             [
                 acc[0].max(p.covariance[(0, 0)]),
                 acc[1].max(p.covariance[(1, 1)]),
             ]
         });
+        let polar_sensor = self.sensors[self.scan_sensor].polar;
+        // EKF on polar plots: each track's measurement prediction in (r, θ) (left empty
+        // otherwise, so the KF path does not touch it).
+        let ekf_polar = self.est.ekf.is_some()
+            && polar_sensor.is_some()
+            && self.points.iter().any(|p| p.polar.is_some());
 
-        // 1. Predict.
+        // 1. Predict (a multi-IMM track's state becomes its prediction).
         self.predicted.clear();
         self.imm_predicted.clear();
-        for track in &self.tracks {
+        self.polar_mp.clear();
+        for track in &mut self.tracks {
             let dt = time - track.time;
-            match (&self.imm, &track.imm) {
-                (Some(imm), Some(est)) => {
+            let (pred, imm_pred) = match (&self.est.imm, &track.imm, &self.est.multi) {
+                (Some(imm), Some(est), _) => {
                     let p = if dt > 0.0 {
                         imm.predict(est, dt).ok()
                     } else {
@@ -335,19 +313,27 @@ impl Tracker {
                         let w = p.log_predicted_probabilities().map(f64::exp);
                         moment_match(&w, p.modes()).ok()
                     });
-                    self.predicted.push(combined);
-                    self.imm_predicted.push(p);
+                    (combined, p)
                 }
-                _ => {
-                    let pred = if dt > 0.0 {
-                        self.filter.predict(&track.estimate, dt).ok()
-                    } else {
-                        Some(track.estimate)
-                    };
-                    self.predicted.push(pred);
-                    self.imm_predicted.push(None);
+                (_, _, Some(multi)) => {
+                    let combined = track.multi.as_mut().and_then(|m| {
+                        if dt > 0.0 {
+                            **m = multi.predict(m, dt).ok()?;
+                        }
+                        m.combined().ok()
+                    });
+                    (combined, None)
                 }
+                _ => (self.est.predict_single(&track.estimate, dt), None),
+            };
+            if ekf_polar {
+                let mp = pred
+                    .as_ref()
+                    .and_then(|p| self.est.polar_prediction(p, polar_sensor.as_ref()));
+                self.polar_mp.push(mp);
             }
+            self.predicted.push(pred);
+            self.imm_predicted.push(imm_pred);
         }
 
         // 2–3. Gate and assign, confirmed tracks first, then tentative ones.
@@ -363,13 +349,14 @@ impl Tracker {
             max_exact_events,
         } = self.config.association
         {
-            self.associate_jpda(plots, r_max, p_detection, clutter_density, max_exact_events);
+            self.associate_jpda(r_max, p_detection, clutter_density, max_exact_events);
         } else {
-            self.associate(TrackStatus::Confirmed, plots, r_max);
+            self.associate(TrackStatus::Confirmed, r_max);
         }
-        self.associate(TrackStatus::Tentative, plots, r_max);
+        self.associate(TrackStatus::Tentative, r_max);
 
         // 4. Update, count, confirm, delete.
+        let polar_model = polar_sensor.as_ref().map(|pm| &pm.model);
         for (k, track) in self.tracks.iter_mut().enumerate() {
             let Some(pred) = self.predicted[k].take() else {
                 track.delete(DeletionReason::FilterFailure);
@@ -377,27 +364,44 @@ impl Tracker {
                 continue;
             };
             let hit = self.assigned[k];
-            let (posterior, imm_posterior) = match (&self.imm, self.imm_predicted[k].take()) {
-                (Some(imm), Some(ip)) => {
-                    imm_step(imm, ip, hit.map(|j| (&self.models[j], &plots[j])))
-                }
-                _ if !self.jpda[k].is_empty() => (
-                    jpda_update(&self.filter, &pred, &self.jpda[k], &self.models, plots)
-                        .map(|g| (g, None)),
-                    None,
-                ),
-                _ => (
-                    match hit {
+            let points = &self.points;
+            let posterior: Option<(Gaussian<4>, Option<f64>)> =
+                match (&self.est.imm, self.imm_predicted[k].take(), &self.est.multi) {
+                    (Some(imm), Some(ip), _) if !self.jpda[k].is_empty() => {
+                        imm_jpda_update(imm, &ip, &self.jpda[k], points).map(|(g, e)| {
+                            track.imm = Some(e);
+                            (g, None)
+                        })
+                    }
+                    (Some(imm), Some(ip), _) => {
+                        imm_step(imm, ip, hit.map(|j| &points[j])).map(|(g, ll, e)| {
+                            track.imm = Some(e);
+                            (g, ll)
+                        })
+                    }
+                    (_, _, Some(multi)) => match (hit, track.multi.as_mut(), &polar_sensor) {
+                        (None, _, _) => Some((pred, None)),
+                        (Some(j), Some(m), Some(pm)) => points[j]
+                            .polar
+                            .and_then(|z| multi_update(multi, m, pm, &z))
+                            .map(|(state, g, ll)| {
+                                **m = state;
+                                (g, Some(ll))
+                            }),
+                        _ => None,
+                    },
+                    _ if !self.jpda[k].is_empty() => {
+                        jpda_update(&self.est, &pred, polar_model, &self.jpda[k], points)
+                            .map(|g| (g, None))
+                    }
+                    _ => match hit {
                         Some(j) => self
-                            .filter
-                            .update(&pred, &self.models[j], &plots[j].position)
-                            .map(|(post, innov)| (post, Some(innov.log_likelihood)))
-                            .ok(),
+                            .est
+                            .update_single(&pred, polar_model, &points[j])
+                            .map(|(g, ll)| (g, Some(ll))),
                         None => Some((pred, None)),
                     },
-                    None,
-                ),
-            };
+                };
             let Some((posterior, log_likelihood)) = posterior else {
                 track.delete(DeletionReason::FilterFailure);
                 report.deleted.push(track.id);
@@ -407,7 +411,6 @@ impl Tracker {
                 report.assigned += 1;
             }
             track.estimate = posterior;
-            track.imm = imm_posterior;
             track.time = time;
             if let Some(sc) = &self.config.score {
                 track.score += match (self.jpda_dl[k], log_likelihood) {
@@ -426,7 +429,7 @@ impl Tracker {
         }
 
         // 5. Initiate from unused plots.
-        self.initiate(time, plots, &mut report);
+        self.initiate(time, &mut report);
 
         // Move the deleted tracks out.
         self.deleted.extend(
@@ -436,10 +439,42 @@ impl Tracker {
         report
     }
 
+    /// The EKF's polar prediction of track `k` with its polar model, when the estimator is
+    /// the EKF and the scan has polar plots.
+    fn polar_of(
+        &self,
+        k: usize,
+    ) -> Option<(&MeasurementPrediction<4, 2>, &argus_sensors::Polar2D<4>)> {
+        let mp = self.polar_mp.get(k)?.as_ref()?;
+        let pm = self.sensors[self.scan_sensor].polar.as_ref()?;
+        Some((mp, &pm.model))
+    }
+
+    /// The query box of track `k`: the Cartesian gate box, widened to hold the EKF's polar
+    /// gate when it has one.
+    fn query_box(
+        &self,
+        k: usize,
+        pred: &Gaussian<4>,
+        gamma: f64,
+        r_max: [f64; 2],
+    ) -> (Vector<2>, [f64; 2]) {
+        let (centre, mut half) = gate_box(pred, gamma, r_max);
+        if let (Some(Some(mp)), Some(pm)) = (
+            self.polar_mp.get(k),
+            self.sensors[self.scan_sensor].polar.as_ref(),
+        ) {
+            let h = polar_half(mp, gamma, pm.conversion_stretch);
+            half = [half[0].max(h), half[1].max(h)];
+        }
+        (centre, half)
+    }
+
     /// Gates the unused plots against the tracks of one status and assigns by GNN.
-    fn associate(&mut self, status: TrackStatus, plots: &[Plot], r_max: [f64; 2]) {
+    fn associate(&mut self, status: TrackStatus, r_max: [f64; 2]) {
         let gamma = self.gate.gamma();
-        self.edges.clear();
+        let mut edges = std::mem::take(&mut self.edges);
+        edges.clear();
         let mut rows: Vec<usize> = Vec::new();
         for (k, track) in self.tracks.iter().enumerate() {
             if track.status != status {
@@ -448,25 +483,22 @@ impl Tracker {
             let Some(pred) = self.predicted[k].as_ref() else {
                 continue;
             };
-            let (centre, half) = gate_box(pred, gamma, r_max);
+            let (centre, half) = self.query_box(k, pred, gamma, r_max);
             let row = rows.len();
-            let (filter, models, used, edges) =
-                (&self.filter, &self.models, &self.used, &mut self.edges);
+            let polar = self.polar_of(k);
+            let (kf, points, used) = (&self.est.kf, &self.points, &self.used);
             let mut any = false;
             self.grid.query(&centre, half, |j| {
                 // The gate ellipse lies inside the box (|ν_i| ≤ √(γ S_ii) ≤ half_i):
                 // skip the plots of the cells met that are outside it before forming S.
-                if used[j] || !in_box(&plots[j].position, &centre, half) {
+                if used[j] || !in_box(&points[j].position, &centre, half) {
                     return;
                 }
-                let Ok(mp) = filter.predict_measurement(pred, &models[j]) else {
+                let Some((nis, _)) = innovation(kf, pred, polar, &points[j]) else {
                     return;
                 };
-                let Ok(innov) = mp.innovation(&models[j], &plots[j].position) else {
-                    return;
-                };
-                if innov.nis <= gamma {
-                    edges.push((row, j, innov.nis));
+                if nis <= gamma {
+                    edges.push((row, j, nis));
                     any = true;
                 }
             });
@@ -474,11 +506,12 @@ impl Tracker {
                 rows.push(k);
             }
         }
+        self.edges = edges;
         if rows.is_empty() {
             return;
         }
         let miss = vec![gamma * (1.0 + 1e-9) + 1e-12; rows.len()];
-        let out = gnn(rows.len(), plots.len(), &self.edges, &miss);
+        let out = gnn(rows.len(), self.points.len(), &self.edges, &miss);
         for (row, col) in out.into_iter().enumerate() {
             if let Some(j) = col {
                 self.assigned[rows[row]] = Some(j);
@@ -488,15 +521,9 @@ impl Tracker {
     }
 
     /// JPDA for the confirmed tracks: gated pairs with likelihood ratios, clusters,
-    /// marginals; every gated plot is spent.
-    fn associate_jpda(
-        &mut self,
-        plots: &[Plot],
-        r_max: [f64; 2],
-        p_d: f64,
-        lambda: f64,
-        max_events: usize,
-    ) {
+    /// marginals; every gated plot is spent. With the IMM, gating is per mode and the
+    /// likelihood is the mode mixture (IMM-JPDA).
+    fn associate_jpda(&mut self, r_max: [f64; 2], p_d: f64, lambda: f64, max_events: usize) {
         let gamma = self.gate.gamma();
         let miss = 1.0 - p_d * self.gate.p_gate();
         let mut pairs: Vec<(usize, usize, f64)> = Vec::new();
@@ -507,26 +534,32 @@ impl Tracker {
             let Some(pred) = self.predicted[k].as_ref() else {
                 continue;
             };
-            let (centre, half) = gate_box(pred, gamma, r_max);
-            let (filter, models) = (&self.filter, &self.models);
+            let imm = self.est.imm.as_ref().zip(self.imm_predicted[k].as_ref());
+            let (centre, half) = match imm {
+                Some((_, ip)) => imm_gate_box(ip, gamma, r_max),
+                None => self.query_box(k, pred, gamma, r_max),
+            };
+            let polar = self.polar_of(k);
+            let (kf, points) = (&self.est.kf, &self.points);
             self.grid.query(&centre, half, |j| {
-                if !in_box(&plots[j].position, &centre, half) {
+                if !in_box(&points[j].position, &centre, half) {
                     return;
                 }
-                let Ok(mp) = filter.predict_measurement(pred, &models[j]) else {
+                let gated = match imm {
+                    Some((imm, ip)) => imm_innovation(imm, ip, &points[j]),
+                    None => innovation(kf, pred, polar, &points[j]),
+                };
+                let Some((nis, ll)) = gated else {
                     return;
                 };
-                let Ok(innov) = mp.innovation(&models[j], &plots[j].position) else {
-                    return;
-                };
-                let g = p_d * innov.log_likelihood.exp() / lambda;
-                if innov.nis <= gamma && g.is_finite() {
+                let g = p_d * ll.exp() / lambda;
+                if nis <= gamma && g.is_finite() {
                     pairs.push((k, j, g));
                 }
             });
         }
         let simple: Vec<(usize, usize)> = pairs.iter().map(|&(k, j, _)| (k, j)).collect();
-        for group in clusters(self.tracks.len(), plots.len(), &simple) {
+        for group in clusters(self.tracks.len(), self.points.len(), &simple) {
             let mut rows: Vec<usize> = group.iter().map(|&e| pairs[e].0).collect();
             let mut cols: Vec<usize> = group.iter().map(|&e| pairs[e].1).collect();
             rows.sort_unstable();
@@ -567,12 +600,13 @@ impl Tracker {
 
     /// Two-point initiation: pairs earlier unused plots (initiators) with this scan's
     /// unused plots through the velocity gate, by GNN on the normalised distance.
-    fn initiate(&mut self, time: f64, plots: &[Plot], report: &mut ScanReport) {
+    fn initiate(&mut self, time: f64, report: &mut ScanReport) {
         let cfg = &self.config;
+        let points = &self.points;
         self.initiators
             .retain(|i| time - i.time <= cfg.max_initiation_interval);
         self.edges.clear();
-        let plot_trace = r_max_trace(plots);
+        let plot_trace = r_max_trace(points);
         for (row, init) in self.initiators.iter().enumerate() {
             let dt = time - init.time;
             if dt <= 0.0 {
@@ -585,7 +619,7 @@ impl Tracker {
                 if used[j] {
                     return;
                 }
-                let z2 = &plots[j];
+                let z2 = &points[j];
                 let lim = cfg.max_speed * dt
                     + cfg.velocity_gate_sigmas
                         * (init.covariance.trace() + z2.covariance.trace()).sqrt();
@@ -596,12 +630,16 @@ impl Tracker {
             });
         }
         let miss = vec![1.0 + 1e-9; self.initiators.len()];
-        let out = gnn(self.initiators.len(), plots.len(), &self.edges, &miss);
+        let out = gnn(self.initiators.len(), points.len(), &self.edges, &miss);
         let mut matched = vec![false; self.initiators.len()];
+        let reference = self.sensors[self.scan_sensor]
+            .polar
+            .as_ref()
+            .map(|pm| pm.reference);
         for (row, col) in out.into_iter().enumerate() {
             let Some(j) = col else { continue };
             let init = self.initiators[row];
-            let z2 = &plots[j];
+            let z2 = &points[j];
             let dt = time - init.time;
             let score = self.config.score.map_or(0.0, |sc| {
                 let lim = self.config.max_speed * dt
@@ -620,10 +658,7 @@ impl Tracker {
             ) else {
                 continue;
             };
-            matched[row] = true;
-            self.used[j] = true;
             let id = TrackId(self.next_id);
-            self.next_id += 1;
             let mut track = Track {
                 id,
                 status: TrackStatus::Tentative,
@@ -639,13 +674,22 @@ impl Tracker {
                 score,
                 peak_score: score,
                 imm: None,
+                multi: None,
             };
-            if self.imm.is_some() {
-                match ImmEstimate::from_common(estimate, [0.5, 0.5]) {
-                    Ok(e) => track.imm = Some(e),
-                    Err(_) => continue,
+            if self.est.imm.is_some() || self.est.multi.is_some() {
+                let Ok(start) = ImmEstimate::from_common(estimate, [0.5, 0.5]) else {
+                    continue;
+                };
+                if self.est.multi.is_some() {
+                    let Some(reference) = reference else { continue };
+                    track.multi = Some(Box::new(MultiImmEstimate::new(start, reference)));
+                } else {
+                    track.imm = Some(start);
                 }
             }
+            matched[row] = true;
+            self.used[j] = true;
+            self.next_id += 1;
             let confirm_now = match &self.config.score {
                 Some(sc) => score >= sc.confirm_threshold(),
                 None => self.config.confirm_m <= 2,
@@ -663,71 +707,15 @@ impl Tracker {
             k += 1;
             !matched[k - 1]
         });
-        for (j, plot) in plots.iter().enumerate() {
+        for (j, p) in points.iter().enumerate() {
             if !self.used[j] {
                 self.initiators.push(Initiator {
                     time,
-                    position: plot.position,
-                    covariance: plot.covariance,
+                    position: p.position,
+                    covariance: p.covariance,
                 });
             }
         }
-    }
-}
-
-/// The JPDA (PDA) update: the moment-matched mixture of the prediction (weight
-/// `β₀ = 1 − Σ β_j`) and the Kalman update with each plot (weight `β_j`), which is the
-/// standard PDA update when all plots share one `R` (Bar-Shalom & Tse 1975).
-fn jpda_update(
-    filter: &Kf<Cv2D>,
-    pred: &Gaussian<4>,
-    weights: &[(usize, f64)],
-    models: &[CartesianPosition<4, 2>],
-    plots: &[Plot],
-) -> Option<Gaussian<4>> {
-    let b0 = (1.0 - weights.iter().map(|w| w.1).sum::<f64>()).max(0.0);
-    let mut parts: Vec<(f64, Gaussian<4>)> = Vec::with_capacity(weights.len() + 1);
-    parts.push((b0, *pred));
-    for &(j, b) in weights {
-        let (post, _) = filter.update(pred, &models[j], &plots[j].position).ok()?;
-        parts.push((b, post));
-    }
-    let total: f64 = parts.iter().map(|p| p.0).sum();
-    if !(total.is_finite() && total > 0.0) {
-        return None;
-    }
-    let mut mean = Vector::<4>::zeros();
-    for (w, g) in &parts {
-        mean += g.mean() * (*w / total);
-    }
-    let mut cov = Matrix::<4, 4>::zeros();
-    for (w, g) in &parts {
-        let d = g.mean() - mean;
-        cov += (g.cov() + d * d.transpose()) * (*w / total);
-    }
-    Gaussian::from_symmetrized(mean, &cov).ok()
-}
-
-/// One IMM update (or coast through a miss): the moment-matched posterior with the
-/// plot's total log-likelihood, and the IMM estimate; `None` posterior on failure.
-fn imm_step(
-    imm: &Imm<Kf<Cv2D>, 4, 2>,
-    pred: ImmPrediction<4, 2>,
-    hit: Option<(&CartesianPosition<4, 2>, &Plot)>,
-) -> (
-    Option<(Gaussian<4>, Option<f64>)>,
-    Option<ImmEstimate<4, 2>>,
-) {
-    let (est, ll) = match hit {
-        Some((model, plot)) => match imm.update(&pred, model, &plot.position) {
-            Ok(u) => (u.estimate, Some(u.log_likelihood)),
-            Err(_) => return (None, None),
-        },
-        None => (pred.into_estimate(), None),
-    };
-    match est.combined() {
-        Ok(c) => (Some((c, ll)), Some(est)),
-        Err(_) => (None, None),
     }
 }
 
@@ -737,8 +725,8 @@ fn in_box(p: &Vector<2>, centre: &Vector<2>, half: [f64; 2]) -> bool {
 }
 
 /// The largest plot covariance trace of a scan (for the initiation query box).
-fn r_max_trace(plots: &[Plot]) -> f64 {
-    plots
+fn r_max_trace(points: &[ScanPoint]) -> f64 {
+    points
         .iter()
         .map(|p| p.covariance.trace())
         .fold(0.0, f64::max)
@@ -823,17 +811,4 @@ fn worst_position_sigma(p: &Matrix<4, 4>) -> f64 {
     let (a, b, c) = (p[(0, 0)], p[(0, 2)], p[(2, 2)]);
     let half = 0.5 * (a - c);
     (0.5 * (a + c) + (half * half + b * b).sqrt()).sqrt()
-}
-
-/// The axis-aligned box around a predicted track that holds its chi-square gate for any plot
-/// whose position variances are at most `r_max`: centre `(x, y)` and half-widths
-/// `√(γ (P_xx + R_max,xx))`, `√(γ (P_yy + R_max,yy))`.
-fn gate_box(pred: &Gaussian<4>, gamma: f64, r_max: [f64; 2]) -> (Vector<2>, [f64; 2]) {
-    let p = pred.cov();
-    let centre = Vector::<2>::new(pred.mean()[0], pred.mean()[2]);
-    let half = [
-        (gamma * (p[(0, 0)] + r_max[0])).sqrt(),
-        (gamma * (p[(2, 2)] + r_max[1])).sqrt(),
-    ];
-    (centre, half)
 }

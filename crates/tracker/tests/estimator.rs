@@ -13,12 +13,12 @@ const SIGMA: f64 = 50.0;
 fn plot(rng: &mut ChaCha8Rng, t: f64, p: Vector<2>) -> Plot {
     let nx: f64 = StandardNormal.sample(rng);
     let ny: f64 = StandardNormal.sample(rng);
-    Plot {
-        time: t,
-        sensor: S0,
-        position: p + Vector::<2>::new(SIGMA * nx, SIGMA * ny),
-        covariance: Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
-    }
+    Plot::cartesian(
+        t,
+        S0,
+        p + Vector::<2>::new(SIGMA * nx, SIGMA * ny),
+        Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
+    )
 }
 
 #[test]

@@ -41,12 +41,12 @@ fn crossing(seed: u64, half_angle: f64, max_exact_events: usize) -> (TrackStatis
             .map(|(_, p)| {
                 let nx: f64 = StandardNormal.sample(&mut rng);
                 let ny: f64 = StandardNormal.sample(&mut rng);
-                Plot {
-                    time: t,
-                    sensor: S0,
-                    position: p + Vector::<2>::new(SIGMA * nx, SIGMA * ny),
-                    covariance: Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
-                }
+                Plot::cartesian(
+                    t,
+                    S0,
+                    p + Vector::<2>::new(SIGMA * nx, SIGMA * ny),
+                    Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
+                )
             })
             .collect();
         tracker.process_scan(t, S0, &plots).unwrap();
@@ -90,17 +90,24 @@ fn jpda_keeps_both_crossing_targets() {
 }
 
 #[test]
-fn jpda_with_imm_is_refused_for_now() {
-    let mut cfg = TrackerConfig::new(vec![S0]);
+fn jpda_with_the_multi_imm_is_refused() {
+    let mut cfg = TrackerConfig::new([argus_tracker::SensorConfig::polar(
+        S0,
+        [0.0, 0.0],
+        50.0,
+        1e-3,
+    )]);
     cfg.association = AssociationConfig::Jpda {
         p_detection: 0.9,
         clutter_density: 1e-8,
         max_exact_events: 10,
     };
-    cfg.estimator = argus_tracker::EstimatorConfig::ImmCv2 {
+    cfg.estimator = argus_tracker::EstimatorConfig::MultiImm {
         sigma_a_low: 1.0,
         sigma_a_high: 20.0,
         p_stay: 0.9,
+        grid_spacing: 0.1,
+        clip: Some(0.05),
     };
     assert!(matches!(
         Tracker::new(cfg),

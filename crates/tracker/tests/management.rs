@@ -22,12 +22,7 @@ fn r() -> Matrix<2, 2> {
 fn noisy(rng: &mut ChaCha8Rng, t: f64, x: f64, y: f64) -> Plot {
     let nx: f64 = StandardNormal.sample(rng);
     let ny: f64 = StandardNormal.sample(rng);
-    Plot {
-        time: t,
-        sensor: S0,
-        position: Vector::<2>::new(x + SIGMA * nx, y + SIGMA * ny),
-        covariance: r(),
-    }
+    Plot::cartesian(t, S0, Vector::<2>::new(x + SIGMA * nx, y + SIGMA * ny), r())
 }
 
 #[test]
@@ -126,14 +121,16 @@ fn clutter_only_gives_false_confirmations_below_the_derived_rate() {
         let t = T * f64::from(k);
         let n: f64 = poisson.sample(&mut rng);
         let plots: Vec<Plot> = (0..n as usize)
-            .map(|_| Plot {
-                time: t,
-                sensor: S0,
-                position: Vector::<2>::new(
-                    side * rng.random::<f64>() - side / 2.0,
-                    side * rng.random::<f64>() - side / 2.0,
-                ),
-                covariance: r(),
+            .map(|_| {
+                Plot::cartesian(
+                    t,
+                    S0,
+                    Vector::<2>::new(
+                        side * rng.random::<f64>() - side / 2.0,
+                        side * rng.random::<f64>() - side / 2.0,
+                    ),
+                    r(),
+                )
             })
             .collect();
         let rep = tracker.process_scan(t, S0, &plots).unwrap();
@@ -254,12 +251,7 @@ fn two_crossing_targets_with_gnn() {
 #[test]
 fn bad_input_is_rejected_with_its_place_and_changes_nothing() {
     let mut tracker = Tracker::new(TrackerConfig::new(vec![S0, SensorId(1)])).unwrap();
-    let good = |t: f64, x: f64| Plot {
-        time: t,
-        sensor: S0,
-        position: Vector::<2>::new(x, 0.0),
-        covariance: r(),
-    };
+    let good = |t: f64, x: f64| Plot::cartesian(t, S0, Vector::<2>::new(x, 0.0), r());
     for k in 0..4 {
         let t = T * f64::from(k);
         tracker
@@ -300,8 +292,7 @@ fn bad_input_is_rejected_with_its_place_and_changes_nothing() {
         "{err:?}"
     );
     // Non-finite position, time and covariance.
-    let mut p = good(t, 4000.0);
-    p.position[1] = f64::NAN;
+    let p = Plot::cartesian(t, S0, Vector::<2>::new(4000.0, f64::NAN), r());
     let err = tracker.process(&[good(t, 4000.0), p]).unwrap_err();
     assert!(
         matches!(
@@ -321,8 +312,9 @@ fn bad_input_is_rejected_with_its_place_and_changes_nothing() {
         matches!(err, TrackerError::NonFinite { what: "time", .. }),
         "{err:?}"
     );
-    let mut p = good(t, 4000.0);
-    p.covariance[(0, 1)] = f64::NAN;
+    let mut cov = r();
+    cov[(0, 1)] = f64::NAN;
+    let p = Plot::cartesian(t, S0, Vector::<2>::new(4000.0, 0.0), cov);
     let err = tracker.process(&[p]).unwrap_err();
     assert!(
         matches!(
@@ -335,8 +327,12 @@ fn bad_input_is_rejected_with_its_place_and_changes_nothing() {
         "{err:?}"
     );
     // Covariance not positive definite.
-    let mut p = good(t, 4000.0);
-    p.covariance = Matrix::<2, 2>::new(1.0, 2.0, 2.0, 1.0);
+    let p = Plot::cartesian(
+        t,
+        S0,
+        Vector::<2>::new(4000.0, 0.0),
+        Matrix::<2, 2>::new(1.0, 2.0, 2.0, 1.0),
+    );
     let err = tracker.process(&[good(t, 4000.0), p]).unwrap_err();
     assert!(
         matches!(err, TrackerError::PlotCovariance { index: 1, .. }),
@@ -369,7 +365,7 @@ fn bad_configs_name_the_field() {
         other => panic!("expected InvalidConfig, got {other:?}"),
     };
     let base = TrackerConfig::new(vec![S0]);
-    assert_eq!(field(TrackerConfig::new(vec![])), "sensors");
+    assert_eq!(field(TrackerConfig::new(Vec::<SensorId>::new())), "sensors");
     assert_eq!(
         field(TrackerConfig {
             confirm_m: 5,

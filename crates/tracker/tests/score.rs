@@ -62,12 +62,7 @@ fn score_follows_the_llr_recursion_and_drives_confirmation_and_deletion() {
     for k in 0..20 {
         let t = T * f64::from(k);
         let plots = if k <= 9 {
-            vec![Plot {
-                time: t,
-                sensor: S0,
-                position: pos(t),
-                covariance: r(),
-            }]
+            vec![Plot::cartesian(t, S0, pos(t), r())]
         } else {
             vec![]
         };
@@ -130,11 +125,13 @@ fn false_confirmations_stay_under_villes_bound() {
         let t = T * f64::from(k);
         let n: f64 = poisson.sample(&mut rng);
         let plots: Vec<Plot> = (0..n as usize)
-            .map(|_| Plot {
-                time: t,
-                sensor: S0,
-                position: Vector::<2>::new(side * rng.random::<f64>(), side * rng.random::<f64>()),
-                covariance: r(),
+            .map(|_| {
+                Plot::cartesian(
+                    t,
+                    S0,
+                    Vector::<2>::new(side * rng.random::<f64>(), side * rng.random::<f64>()),
+                    r(),
+                )
             })
             .collect();
         let rep = tracker.process_scan(t, S0, &plots).unwrap();

@@ -341,12 +341,12 @@ impl Setup {
             self.sigma_az,
             ConversionMethod::Unbiased,
         )?;
-        Ok(Plot {
-            time: self.time(k),
-            sensor: argus_tracker::SensorId(RADAR),
-            position: c.position,
-            covariance: c.covariance,
-        })
+        Ok(Plot::cartesian(
+            self.time(k),
+            argus_tracker::SensorId(RADAR),
+            c.position,
+            c.covariance,
+        ))
     }
 
     fn time(&self, k: usize) -> f64 {
