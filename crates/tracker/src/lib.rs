@@ -1,11 +1,25 @@
 //! Multi-target surveillance tracker: plots in, tracks out.
 //!
-//! A [`Tracker`] consumes a time-ordered stream of 2-D Cartesian position [`Plot`]s
-//! (each with its covariance, e.g. a converted polar plot) from one or more sensors,
-//! scan by scan, and maintains many [`Track`]s, each with its own estimator on the
-//! constant-velocity state `[x, vx, y, vy]`: a Kalman filter ([`argus_filters::Kf`] on
-//! [`argus_motion_models::Cv2D`]) or a two-mode CV IMM ([`argus_imm::Imm`]), chosen by
-//! [`TrackerConfig::estimator`].
+//! A [`Tracker`] consumes a time-ordered stream of 2-D [`Plot`]s from one or more
+//! sensors ([`SensorConfig`]: id, position, polar noise), scan by scan: Cartesian plots
+//! ([`Plot::cartesian`], a position with its covariance) or polar plots
+//! ([`Plot::polar`], range and azimuth from the sensor's position). It maintains many
+//! [`Track`]s, each with its own estimator on the constant-velocity state
+//! `[x, vx, y, vy]`, chosen by [`TrackerConfig::estimator`]: a Kalman filter
+//! ([`argus_filters::Kf`] on [`argus_motion_models::Cv2D`]), an EKF updated with the
+//! polar plots themselves ([`argus_filters::Ekf`], [`argus_sensors::Polar2D`]), a two-mode
+//! CV IMM ([`argus_imm::Imm`]), or seed 000's multi-IMM measurement-noise estimator
+//! ([`argus_imm::MultiImm`], its `R` estimate on [`Track::noise_estimate`]).
+//!
+//! Polar plots are converted once per scan by the unbiased conversion
+//! ([`argus_sensors::convert_polar`], Mo Longbin et al. 1998) plus the sensor position:
+//! that Cartesian plot is what the grid bins, the gates of KF and IMM tracks see, the
+//! initiation pairs and the KF and IMM update. The EKF gates and updates in `(r, θ)` with
+//! its own `S` (its query box is widened to hold that gate: see `polar_half`), and its
+//! likelihoods are divided by the Jacobian `r` of the polar map so that they are per m²
+//! like the clutter density. The multi-IMM gates on the plot converted with the
+//! configured noise and updates each of its IMMs with the plot converted with that IMM's
+//! hypothesis.
 //!
 //! # One scan
 //! 1. Every live track is predicted to the scan time.
@@ -25,6 +39,14 @@
 //!    **JPDA** ([`AssociationConfig::Jpda`]) may replace GNN for confirmed tracks: per
 //!    cluster, exact joint events when there are at most `max_exact_events`, Fitzgerald's
 //!    cheap JPDA (`β_tj = G_tj / (S_t + S^j − G_tj + B)`) beyond.
+//!    **IMM-JPDA** (JPDA with [`EstimatorConfig::ImmCv2`]): a plot is gated when it is in
+//!    some mode's gate (the query box holds every mode's), its likelihood is the mode
+//!    mixture `Σ_r μ̄_r N(ν_r; 0, S_r)`, the JPDA weights come from those, and each mode is
+//!    updated with its own PDA mixture, weights `P(r, j) / μ_r` with
+//!    `P(r, j) = β_j μ̄_r N_r,j / N_j`, `P(r, 0) = β₀ μ̄_r`; the mode probabilities are
+//!    `μ_r = μ̄_r (β₀ + Σ_j β_j N_r,j / N_j)`, the mode likelihood summed over the plot
+//!    events (Blom & Bloem, IEEE Trans. AC 45(2), 2000; Bar-Shalom, Willett & Tian,
+//!    *Tracking and Data Fusion*, 2011). With identical modes it is JPDA with the KF.
 //!    The solver is the [`lsap`] crate: SciPy's `linear_sum_assignment` algorithm
 //!    (Crouse's shortest augmenting path form of Jonker–Volgenant) on `f64` costs and
 //!    rectangular matrices. `pathfinding::kuhn_munkres`, the best-known Rust solver,
@@ -50,9 +72,10 @@
 //!
 //! # Bad input
 //! Plots out of time order, from a sensor not in the configuration, with a non-finite
-//! time, position or covariance, or with a covariance that is not symmetric positive
-//! definite, and bad configurations give a [`TrackerError`] that names the plot (index,
-//! time, sensor) or the field. All plots are checked before any track is touched, so
+//! time, position, covariance, range or azimuth, with a covariance that is not symmetric
+//! positive definite, polar plots with a non-positive range or from a sensor without
+//! polar noise, Cartesian plots for the multi-IMM, and bad configurations give a
+//! [`TrackerError`] that names the plot (index, time, sensor) or the field. All plots are checked before any track is touched, so
 //! a rejected call leaves the tracker unchanged. A track whose filter step fails
 //! numerically is deleted alone.
 //!
@@ -68,8 +91,10 @@
 //! `argus_sim::Ospa`, `Gospa` and `TrackStatistics`.
 //!
 //! # Not yet here
-//! Polar plots go in after conversion (`argus_sensors::convert_polar`) by the caller;
-//! EKF and coordinated-turn IMM estimators per track, and IMM-JPDA, are not built yet.
+//! Coordinated-turn modes in the per-track IMM; JPDA with the multi-IMM (refused by the
+//! configuration); the multi-IMM with Cartesian plots (refused per plot) and with one
+//! noise estimate per sensor (all sensors feeding a track share its estimate); 3-D
+//! (spherical) plots.
 //!
 //! # Example
 //! ```

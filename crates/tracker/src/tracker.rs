@@ -486,7 +486,7 @@ impl Tracker {
             let (centre, half) = self.query_box(k, pred, gamma, r_max);
             let row = rows.len();
             let polar = self.polar_of(k);
-            let (kf, points, used) = (&self.est.kf, &self.points, &self.used);
+            let (points, used) = (&self.points, &self.used);
             let mut any = false;
             self.grid.query(&centre, half, |j| {
                 // The gate ellipse lies inside the box (|ν_i| ≤ √(γ S_ii) ≤ half_i):
@@ -494,7 +494,7 @@ impl Tracker {
                 if used[j] || !in_box(&points[j].position, &centre, half) {
                     return;
                 }
-                let Some((nis, _)) = innovation(kf, pred, polar, &points[j]) else {
+                let Some((nis, _)) = innovation(pred, polar, &points[j]) else {
                     return;
                 };
                 if nis <= gamma {
@@ -540,14 +540,14 @@ impl Tracker {
                 None => self.query_box(k, pred, gamma, r_max),
             };
             let polar = self.polar_of(k);
-            let (kf, points) = (&self.est.kf, &self.points);
+            let points = &self.points;
             self.grid.query(&centre, half, |j| {
                 if !in_box(&points[j].position, &centre, half) {
                     return;
                 }
                 let gated = match imm {
                     Some((imm, ip)) => imm_innovation(imm, ip, &points[j]),
-                    None => innovation(kf, pred, polar, &points[j]),
+                    None => innovation(pred, polar, &points[j]),
                 };
                 let Some((nis, ll)) = gated else {
                     return;

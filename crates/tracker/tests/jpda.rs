@@ -3,7 +3,9 @@
 
 use argus_core_math::{Matrix, Vector};
 use argus_sim::{TargetId, TrackScan, TrackStatistics, run_rng};
-use argus_tracker::{AssociationConfig, Plot, SensorId, TrackStatus, Tracker, TrackerConfig};
+use argus_tracker::{
+    AssociationConfig, EstimatorConfig, Plot, SensorId, TrackStatus, Tracker, TrackerConfig,
+};
 use rand_distr::{Distribution, StandardNormal};
 
 const S0: SensorId = SensorId(0);
@@ -13,7 +15,18 @@ const SIGMA: f64 = 50.0;
 /// Two targets crossing at the origin at t = 52.5 s (between scans), 200 m/s, headings
 /// ±`half_angle`, P_D = 1, no clutter; JPDA with P_D = 0.99 and λ = 1e-8 /m².
 fn crossing(seed: u64, half_angle: f64, max_exact_events: usize) -> (TrackStatistics, usize) {
+    crossing_with(seed, half_angle, max_exact_events, EstimatorConfig::Kf)
+}
+
+/// [`crossing`] with the given per-track estimator.
+fn crossing_with(
+    seed: u64,
+    half_angle: f64,
+    max_exact_events: usize,
+    estimator: EstimatorConfig,
+) -> (TrackStatistics, usize) {
     let mut cfg = TrackerConfig::new(vec![S0]);
+    cfg.estimator = estimator;
     cfg.association = AssociationConfig::Jpda {
         p_detection: 0.99,
         clutter_density: 1e-8,
@@ -116,4 +129,111 @@ fn jpda_with_the_multi_imm_is_refused() {
             ..
         })
     ));
+}
+
+#[test]
+fn imm_jpda_keeps_both_crossing_targets() {
+    // The same scene as `jpda_keeps_both_crossing_targets`, with a two-mode CV IMM per track
+    // (0.5 and 10 m/s², p_stay 0.95): IMM-JPDA (mode-conditioned gating and likelihoods,
+    // weights from the mixed likelihoods). Same assertions.
+    let imm = EstimatorConfig::ImmCv2 {
+        sigma_a_low: 0.5,
+        sigma_a_high: 10.0,
+        p_stay: 0.95,
+    };
+    for seed in 0..5 {
+        for max_events in [100, 1] {
+            for deg in [45.0f64, 3.0] {
+                let (st, most) = crossing_with(seed, deg.to_radians(), max_events, imm);
+                println!("IMM-JPDA seed {seed} {deg}° events ≤ {max_events}: {st:?}");
+                assert_eq!(st.breaks, 0, "seed {seed} {deg}° {max_events}: {st:?}");
+                assert!(most <= 2, "seed {seed} {deg}°: {most} confirmed tracks");
+                assert_eq!(st.false_track_scans, 0, "seed {seed} {deg}°: {st:?}");
+                if deg > 10.0 {
+                    assert_eq!(st.id_swaps, 0, "seed {seed} {deg}°: {st:?}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn imm_jpda_with_identical_modes_is_jpda_with_the_kf() {
+    // Identical modes: every mode has the KF's prediction, so the mixed likelihood is the
+    // KF's, the JPDA weights are the same, μ stays μ̄ and each mode gets the JPDA+KF update
+    // (see the derivation on the IMM-JPDA update). Two crossing targets at 3° (shared
+    // plots) plus uniform false plots; 1e-9 relative leaves room for rounding only.
+    let jpda = AssociationConfig::Jpda {
+        p_detection: 0.9,
+        clutter_density: 1e-9,
+        max_exact_events: 100,
+    };
+    let kf_cfg = TrackerConfig {
+        association: jpda,
+        ..TrackerConfig::new(vec![S0])
+    };
+    let imm_cfg = TrackerConfig {
+        estimator: EstimatorConfig::ImmCv2 {
+            sigma_a_low: kf_cfg.sigma_a,
+            sigma_a_high: kf_cfg.sigma_a,
+            p_stay: 0.9,
+        },
+        ..kf_cfg.clone()
+    };
+    let mut kf = Tracker::new(kf_cfg).unwrap();
+    let mut imm = Tracker::new(imm_cfg).unwrap();
+    let mut rng = run_rng(4, 0);
+    let (c, s) = (3f64.to_radians().cos(), 3f64.to_radians().sin());
+    let mut shared = 0;
+    for k in 0..21 {
+        let t = T * f64::from(k);
+        let tau = t - 52.5;
+        let mut plots: Vec<Plot> = [1.0, -1.0]
+            .iter()
+            .map(|sign| {
+                let nx: f64 = StandardNormal.sample(&mut rng);
+                let ny: f64 = StandardNormal.sample(&mut rng);
+                Plot::cartesian(
+                    t,
+                    S0,
+                    Vector::<2>::new(
+                        200.0 * c * tau + SIGMA * nx,
+                        sign * 200.0 * s * tau + SIGMA * ny,
+                    ),
+                    Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
+                )
+            })
+            .collect();
+        for _ in 0..2 {
+            let ux: f64 = StandardNormal.sample(&mut rng);
+            let uy: f64 = StandardNormal.sample(&mut rng);
+            plots.push(Plot::cartesian(
+                t,
+                S0,
+                Vector::<2>::new(200.0 * c * tau + 300.0 * ux, 300.0 * uy),
+                Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
+            ));
+        }
+        let ra = kf.process_scan(t, S0, &plots).unwrap();
+        let rb = imm.process_scan(t, S0, &plots).unwrap();
+        assert_eq!(ra, rb, "scan {k}");
+        shared += usize::from(ra.assigned >= 2 && (tau.abs() < 20.0));
+        assert_eq!(kf.tracks().len(), imm.tracks().len(), "scan {k}");
+        for (a, b) in kf.tracks().iter().zip(imm.tracks()) {
+            assert_eq!((a.id(), a.status()), (b.id(), b.status()));
+            let dm = (a.estimate().mean() - b.estimate().mean()).norm();
+            let dp = (a.estimate().cov() - b.estimate().cov()).norm();
+            assert!(
+                dm <= 1e-9 * a.estimate().mean().norm().max(1.0)
+                    && dp <= 1e-9 * a.estimate().cov().norm(),
+                "scan {k}: {dm} {dp}"
+            );
+            let mu = b.mode_probabilities().unwrap();
+            assert!((mu[0] - 0.5).abs() < 1e-9, "{mu:?}");
+        }
+    }
+    assert!(
+        shared > 0,
+        "the scene never had both tracks updated near the crossing"
+    );
 }
