@@ -333,7 +333,11 @@ impl Tracker {
                 self.polar_mp.push(mp);
             }
             self.predicted.push(pred);
-            self.imm_predicted.push(imm_pred);
+            // Only IMM trackers keep the mode-conditioned predictions (a large value to
+            // move per track for nothing otherwise); look them up with `get`.
+            if self.est.imm.is_some() {
+                self.imm_predicted.push(imm_pred);
+            }
         }
 
         // 2–3. Gate and assign, confirmed tracks first, then tentative ones.
@@ -365,43 +369,46 @@ impl Tracker {
             };
             let hit = self.assigned[k];
             let points = &self.points;
-            let posterior: Option<(Gaussian<4>, Option<f64>)> =
-                match (&self.est.imm, self.imm_predicted[k].take(), &self.est.multi) {
-                    (Some(imm), Some(ip), _) if !self.jpda[k].is_empty() => {
-                        imm_jpda_update(imm, &ip, &self.jpda[k], points).map(|(g, e)| {
-                            track.imm = Some(e);
-                            (g, None)
-                        })
-                    }
-                    (Some(imm), Some(ip), _) => {
-                        imm_step(imm, ip, hit.map(|j| &points[j])).map(|(g, ll, e)| {
-                            track.imm = Some(e);
-                            (g, ll)
-                        })
-                    }
-                    (_, _, Some(multi)) => match (hit, track.multi.as_mut(), &polar_sensor) {
-                        (None, _, _) => Some((pred, None)),
-                        (Some(j), Some(m), Some(pm)) => points[j]
-                            .polar
-                            .and_then(|z| multi_update(multi, m, pm, &z))
-                            .map(|(state, g, ll)| {
-                                **m = state;
-                                (g, Some(ll))
-                            }),
-                        _ => None,
-                    },
-                    _ if !self.jpda[k].is_empty() => {
-                        jpda_update(&self.est, &pred, polar_model, &self.jpda[k], points)
-                            .map(|g| (g, None))
-                    }
-                    _ => match hit {
-                        Some(j) => self
-                            .est
-                            .update_single(&pred, polar_model, &points[j])
-                            .map(|(g, ll)| (g, Some(ll))),
-                        None => Some((pred, None)),
-                    },
-                };
+            let posterior: Option<(Gaussian<4>, Option<f64>)> = match (
+                &self.est.imm,
+                self.imm_predicted.get_mut(k).and_then(Option::take),
+                &self.est.multi,
+            ) {
+                (Some(imm), Some(ip), _) if !self.jpda[k].is_empty() => {
+                    imm_jpda_update(imm, &ip, &self.jpda[k], points).map(|(g, e)| {
+                        track.imm = Some(e);
+                        (g, None)
+                    })
+                }
+                (Some(imm), Some(ip), _) => {
+                    imm_step(imm, ip, hit.map(|j| &points[j])).map(|(g, ll, e)| {
+                        track.imm = Some(e);
+                        (g, ll)
+                    })
+                }
+                (_, _, Some(multi)) => match (hit, track.multi.as_mut(), &polar_sensor) {
+                    (None, _, _) => Some((pred, None)),
+                    (Some(j), Some(m), Some(pm)) => points[j]
+                        .polar
+                        .and_then(|z| multi_update(multi, m, pm, &z))
+                        .map(|(state, g, ll)| {
+                            **m = state;
+                            (g, Some(ll))
+                        }),
+                    _ => None,
+                },
+                _ if !self.jpda[k].is_empty() => {
+                    jpda_update(&self.est, &pred, polar_model, &self.jpda[k], points)
+                        .map(|g| (g, None))
+                }
+                _ => match hit {
+                    Some(j) => self
+                        .est
+                        .update_single(&pred, polar_model, &points[j])
+                        .map(|(g, ll)| (g, Some(ll))),
+                    None => Some((pred, None)),
+                },
+            };
             let Some((posterior, log_likelihood)) = posterior else {
                 track.delete(DeletionReason::FilterFailure);
                 report.deleted.push(track.id);
@@ -534,7 +541,8 @@ impl Tracker {
             let Some(pred) = self.predicted[k].as_ref() else {
                 continue;
             };
-            let imm = self.est.imm.as_ref().zip(self.imm_predicted[k].as_ref());
+            let imm =
+                (self.est.imm.as_ref()).zip(self.imm_predicted.get(k).and_then(Option::as_ref));
             let (centre, half) = match imm {
                 Some((_, ip)) => imm_gate_box(ip, gamma, r_max),
                 None => self.query_box(k, pred, gamma, r_max),
