@@ -28,6 +28,9 @@ struct Config {
     #[serde(rename = "sensor", default)]
     sensors: Vec<SensorConfig>,
     estimator: EstimatorConfig,
+    /// Multi-target mode: read by `track_multi.rs`.
+    #[serde(default, rename = "tracker")]
+    _tracker: Option<serde::de::IgnoredAny>,
 }
 
 /// A sensor: id and position (`[x, y]` or `[x, y, z]`); polar sensors also their noise,
@@ -158,14 +161,14 @@ enum Estimator {
 
 /// A validated sensor.
 #[derive(Debug, Clone, Copy)]
-struct Sensor {
-    id: u32,
+pub(crate) struct Sensor {
+    pub(crate) id: u32,
     /// `[x, y, z]` (z = 0 when the config gives two coordinates).
-    position: [f64; 3],
+    pub(crate) position: [f64; 3],
     /// Range σ (m), azimuth σ (rad).
-    polar: Option<(f64, f64)>,
+    pub(crate) polar: Option<(f64, f64)>,
     /// Elevation σ (rad).
-    sigma_elevation: Option<f64>,
+    pub(crate) sigma_elevation: Option<f64>,
 }
 
 /// Validates the IMM keys (`models`, `markov`, `initial`) and builds the motion models.
@@ -405,13 +408,23 @@ fn load(path: &Path) -> Result<(Vec<Sensor>, Estimator), CliError> {
     Ok((sensors, est))
 }
 
-/// Runs `argus track`: 2-D plot files with a 2-D CV estimator, 3-D ones (spherical or
+/// Runs `argus track` (with a `[tracker]` table: the multi-target tracker, `track_multi.rs`):
+/// 2-D plot files with a 2-D CV estimator, 3-D ones (spherical or
 /// Cartesian 3-D) with a 3-D CV estimator. Returns the number of track points written.
 ///
 /// # Errors
 /// [`CliError::Input`] for bad configuration or plots, filter errors, I/O.
 pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize, CliError> {
     let (sensors, est) = load(config)?;
+    if let Some(multi) = crate::track_multi::load(config, &sensors)? {
+        let files = crate::track_multi::Files {
+            config,
+            plots: plots_path,
+            out,
+        };
+        let plots = plotfile::read(plots_path)?;
+        return crate::track_multi::run(&multi, &files, &plots);
+    }
     let plots = plotfile::read(plots_path)?;
     let ctx = Ctx {
         config,
