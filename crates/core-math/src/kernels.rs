@@ -56,26 +56,32 @@ pub fn mul_transpose<const R: usize, const K: usize, const C: usize>(
     out
 }
 
-/// The congruence `A P Aᵀ` of a symmetric `P`, made exactly symmetric by mirroring the
-/// lower triangle of `(A P) Aᵀ`.
+/// Copies the lower triangle onto the upper one: `m` becomes exactly symmetric (for a
+/// product that is symmetric in exact arithmetic but not under round-off).
 #[inline]
-#[must_use]
 #[expect(
     clippy::needless_range_loop,
     reason = "the mirror reads and writes the same array at (i, j) and (j, i)"
 )]
+pub fn mirror_lower<const N: usize>(m: &mut Matrix<N, N>) {
+    let o = &mut m.data.0;
+    for j in 0..N {
+        for i in j + 1..N {
+            o[i][j] = o[j][i];
+        }
+    }
+}
+
+/// The congruence `A P Aᵀ` of a symmetric `P`, made exactly symmetric by mirroring the
+/// lower triangle of `(A P) Aᵀ`.
+#[inline]
+#[must_use]
 pub fn congruence<const R: usize, const N: usize>(
     a: &Matrix<R, N>,
     p: &Matrix<N, N>,
 ) -> Matrix<R, R> {
     let mut out = mul_transpose(&mul(a, p), a);
-    // Mirror the lower triangle so the result is exactly symmetric.
-    let o = &mut out.data.0;
-    for j in 0..R {
-        for i in j + 1..R {
-            o[i][j] = o[j][i];
-        }
-    }
+    mirror_lower(&mut out);
     out
 }
 

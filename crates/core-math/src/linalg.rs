@@ -282,10 +282,6 @@ pub fn joseph_update<const N: usize, const M: usize>(
 #[must_use]
 #[allow(non_snake_case)]
 #[inline]
-#[expect(
-    clippy::needless_range_loop,
-    reason = "the mirror reads and writes the same array at (i, j) and (j, i)"
-)]
 pub fn joseph_update_from_cross<const N: usize, const M: usize>(
     P: &Matrix<N, N>,
     K: &Matrix<N, M>,
@@ -297,12 +293,7 @@ pub fn joseph_update_from_cross<const N: usize, const M: usize>(
     let B = P - mul_transpose(K, PHt);
     let BHt = mul_transpose(&B, H);
     let mut out = B - mul_transpose(&BHt, K);
-    let o = &mut out.data.0;
-    for j in 0..N {
-        for i in j + 1..N {
-            o[i][j] = o[j][i];
-        }
-    }
+    crate::kernels::mirror_lower(&mut out);
     out + congruence(K, R)
 }
 
