@@ -233,3 +233,74 @@ impl SensorModel {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::estimator::polar_half;
+    use argus_core_math::Gaussian;
+    use argus_filters::{Ekf, GaussianFilter};
+    use argus_motion_models::Cv2D;
+    use rand::RngExt;
+
+    #[test]
+    fn the_ekf_query_box_holds_its_polar_gate_as_converted_plots() {
+        // Claim of `polar_half`: every plot inside the EKF's gate νᵀ S⁻¹ ν ≤ γ, once
+        // converted (unbiased) and placed at the sensor, lies in the square box of that
+        // half-width around the predicted position. Checked on the gate's boundary (where
+        // the extreme points are) for random predictions, with a large σ_θ = 0.03 rad so
+        // that the curvature and the conversion's outward stretch matter.
+        let gamma = 9.21; // χ²₂ at 0.99
+        let cfg = SensorConfig::polar(SensorId(0), [1_000.0, -500.0], 50.0, 0.03);
+        let sensor = SensorModel::new(&cfg).unwrap();
+        let pm = sensor.polar.unwrap();
+        let ekf = Ekf::new(Cv2D::discrete(2.0).unwrap());
+        let mut rng = argus_sim::run_rng(90, 0);
+        let mut checked = 0;
+        for _ in 0..300 {
+            let range = 2_000.0 + 48_000.0 * rng.random::<f64>();
+            let bearing = std::f64::consts::TAU * rng.random::<f64>();
+            let (sx, sy, rho) = (
+                50.0 + 3_000.0 * rng.random::<f64>(),
+                50.0 + 3_000.0 * rng.random::<f64>(),
+                1.8 * rng.random::<f64>() - 0.9,
+            );
+            let mean = Vector::<4>::new(
+                cfg.position[0] + range * bearing.cos(),
+                0.0,
+                cfg.position[1] + range * bearing.sin(),
+                0.0,
+            );
+            let mut p = Matrix::<4, 4>::identity() * 100.0;
+            p[(0, 0)] = sx * sx;
+            p[(2, 2)] = sy * sy;
+            p[(0, 2)] = rho * sx * sy;
+            p[(2, 0)] = rho * sx * sy;
+            let pred = Gaussian::new(mean, p).unwrap();
+            let mp = ekf.predict_measurement(&pred, &pm.model).unwrap();
+            let half = polar_half(&mp, gamma, pm.conversion_stretch);
+            let s = mp.s();
+            // Cholesky of the 2 × 2 S.
+            let l00 = s[(0, 0)].sqrt();
+            let l10 = s[(1, 0)] / l00;
+            let l11 = (s[(1, 1)] - l10 * l10).sqrt();
+            for k in 0..64 {
+                let a = std::f64::consts::TAU * f64::from(k) / 64.0;
+                let (u0, u1) = (gamma.sqrt() * a.cos(), gamma.sqrt() * a.sin());
+                let z = mp.z_pred() + Vector::<2>::new(l00 * u0, l10 * u0 + l11 * u1);
+                if z[0] <= 0.0 {
+                    continue;
+                }
+                let plot = Plot::polar(0.0, SensorId(0), z[0], z[1]);
+                let point = sensor.point(0, &plot, true).unwrap();
+                let d = point.position - Vector::<2>::new(mean[0], mean[2]);
+                assert!(
+                    d[0].abs() <= half && d[1].abs() <= half,
+                    "offset {d:?} outside ±{half} (range {range})"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked > 15_000, "{checked}");
+    }
+}
