@@ -409,3 +409,70 @@ fn ekf_polar_likelihoods_are_per_square_metre_like_the_clutter_density() {
         b.score()
     );
 }
+
+#[test]
+fn ekf_jpda_on_polar_plots_keeps_two_crossing_targets() {
+    // JPDA with the EKF per track: polar gating with the EKF's own S, likelihoods per m²,
+    // each track updated with the mixture of its EKF updates. Two targets at 200 m/s
+    // crossing at 45° at (30 km, 10 km), between scans, seen by the polar radar at SENSOR
+    // (σ_r = 20 m, σ_θ = 1.5 mrad ≈ 50 m cross-range); the assertions of the Cartesian
+    // JPDA crossing test (tests/jpda.rs): no break, no extra confirmed track, no swap.
+    use argus_sim::{TargetId, TrackScan, TrackStatistics};
+    const SIGMAS: [f64; 2] = [20.0, 1.5e-3];
+    let half = 22.5_f64.to_radians();
+    for seed in 0..5 {
+        let cfg = TrackerConfig {
+            estimator: EstimatorConfig::Ekf,
+            association: AssociationConfig::Jpda {
+                p_detection: 0.99,
+                clutter_density: 1e-8,
+                max_exact_events: 100,
+            },
+            ..TrackerConfig::new([SensorConfig::polar(S0, SENSOR, SIGMAS[0], SIGMAS[1])])
+        };
+        let mut tracker = Tracker::new(cfg).unwrap();
+        let mut rng = run_rng(82, seed);
+        let (mut scans, mut most) = (Vec::new(), 0);
+        for k in 0..21 {
+            let t = T * f64::from(k);
+            let tau = t - 52.5;
+            let truth: Vec<(TargetId, Vector<2>)> = [1.0, -1.0]
+                .iter()
+                .enumerate()
+                .map(|(i, sign)| {
+                    (
+                        TargetId(i as u32),
+                        Vector::<2>::new(
+                            30_000.0 + 200.0 * half.cos() * tau,
+                            10_000.0 + sign * 200.0 * half.sin() * tau,
+                        ),
+                    )
+                })
+                .collect();
+            let plots: Vec<Plot> = truth
+                .iter()
+                .map(|(_, p)| plot(&mut rng, t, &Vector::<4>::new(p[0], 0.0, p[1], 0.0), SIGMAS))
+                .collect();
+            tracker.process_scan(t, S0, &plots).unwrap();
+            let tracks: Vec<(u64, Vector<2>)> = tracker
+                .tracks()
+                .iter()
+                .filter(|tr| tr.status() == TrackStatus::Confirmed)
+                .map(|tr| {
+                    (
+                        tr.id().0,
+                        Vector::<2>::new(tr.estimate().mean()[0], tr.estimate().mean()[2]),
+                    )
+                })
+                .collect();
+            most = most.max(tracks.len());
+            scans.push(TrackScan::assign(t, &truth, &tracks, 500.0).unwrap());
+        }
+        let st = TrackStatistics::from_scans(&scans).unwrap();
+        println!("EKF-JPDA seed {seed}: {st:?}");
+        assert_eq!(st.breaks, 0, "seed {seed}: {st:?}");
+        assert!(most <= 2, "seed {seed}: {most} confirmed tracks");
+        assert_eq!(st.false_track_scans, 0, "seed {seed}: {st:?}");
+        assert_eq!(st.id_swaps, 0, "seed {seed}: {st:?}");
+    }
+}
