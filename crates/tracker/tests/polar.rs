@@ -249,3 +249,28 @@ fn bad_sensor_configs_name_the_field() {
     ekf.estimator = EstimatorConfig::Ekf;
     assert!(Tracker::new(ekf).is_ok());
 }
+
+#[test]
+fn a_polar_plot_the_conversion_cannot_take_is_a_typed_error() {
+    // σ_θ = 40 rad: λ = e^{−σ_θ²/2} underflows to 0 and the unbiased conversion divides by
+    // it, so the converted position is not finite; the tracker names the plot.
+    let mut tracker = Tracker::new(TrackerConfig::new([SensorConfig::polar(
+        S0, SENSOR, 30.0, 40.0,
+    )]))
+    .unwrap();
+    let err = tracker
+        .process(&[Plot::polar(0.0, S0, 10_000.0, 0.3)])
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            TrackerError::Conversion {
+                index: 0,
+                sensor: S0,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert_eq!(tracker.time(), None);
+}
