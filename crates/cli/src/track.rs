@@ -94,7 +94,8 @@ struct EstimatorConfig {
     per_axis: Option<bool>,
 }
 
-fn line_of(text: &str, offset: usize) -> u64 {
+/// The 1-based line of byte `offset` of `text`.
+pub(crate) fn line_of(text: &str, offset: usize) -> u64 {
     text.get(..offset)
         .map_or(0, |s| s.matches('\n').count() as u64 + 1)
 }

@@ -2,7 +2,7 @@
 //! over a user's plot file, one CSV row per track per scan with its id and status, and a
 //! JSON summary (see `docs/FORMATS.md`).
 //!
-//! The `[sensor]` and `[estimator]` tables are read and checked by `track.rs` first; this
+//! The `[[sensor]]` and `[estimator]` tables are read and checked by `track.rs` first; this
 //! module maps them and the `[tracker]` table onto [`TrackerConfig`] (whose
 //! [`TrackerConfig::validate`] is the one check of the tracker's values: its field names
 //! are mapped back to the file's lines here), groups the plots into scans by
@@ -24,7 +24,7 @@ use toml::Spanned;
 use crate::error::CliError;
 use crate::output::write_atomic;
 use crate::plotfile::{FilePlot, FileValue};
-use crate::track::Sensor;
+use crate::track::{Sensor, line_of};
 
 /// The parts of the configuration file this module reads (the rest is `track.rs`'s).
 #[derive(Debug, Deserialize)]
@@ -104,12 +104,6 @@ pub(crate) struct MultiTarget {
     config: TrackerConfig,
     /// `estimator.kind` as written.
     estimator: String,
-}
-
-/// The 1-based line of byte `offset` of `text`.
-fn line_of(text: &str, offset: usize) -> u64 {
-    text.get(..offset)
-        .map_or(0, |s| s.matches('\n').count() as u64 + 1)
 }
 
 /// Reads and checks `path` against `[tracker]`: `None` when the file has no `[tracker]`

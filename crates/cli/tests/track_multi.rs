@@ -229,6 +229,21 @@ fn jpda_ekf_imm_and_multi_imm_variants_track_both_targets() {
     let run = track(dir.path(), &config(EKF, jpda), &plots);
     check_two_tracks(&run);
 
+    // Track-score (SPRT) management: the score column, both targets confirmed, nothing
+    // deleted.
+    let score = "[tracker.score]\np_detection = 0.9\nclutter_density = 1e-9\nnew_target_density = 1e-10\nfalse_confirm = 1e-3\nmissed_confirm = 0.1\ndelete_drop = 8.0\n";
+    let run = track(dir.path(), &config(KF, score), &plots);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    assert!(run.csv.lines().next().unwrap().ends_with(",score"));
+    assert_eq!(run.summary["confirmation"], "score");
+    assert_eq!(run.summary["tracks"]["confirmed_at_end"], 2);
+    assert_eq!(run.summary["tracks"]["deleted"], 0);
+    assert!(
+        parse_rows(&run.csv)
+            .iter()
+            .all(|r| num(r, "score").is_finite())
+    );
+
     // The multi-IMM: each track's noise reference starts at the sensor's configured σ
     // (50 m, 0.06°) and moves by at most the clip (5 % in variance) per plot.
     let multi = format!(
