@@ -473,6 +473,37 @@ fn out_of_order_plots_name_the_line() {
     let plots = "t,sensor,x,y,r_xx,r_xy,r_yy\n0,1,0,0,2500,0,2500\n5,7,500,0,2500,0,2500\n";
     let run = track(dir.path(), &config(KF, ""), plots);
     assert_config_error(&run, "plots.csv:3", "sensor");
+    // A polar plot, in the third scan, from a sensor configured without σ: the tracker's
+    // error is reported at the plot's line, and a previous tracks file stays as it was
+    // (written atomically).
+    let good = track(dir.path(), &config(KF, ""), &two_target_plots(14));
+    assert_eq!(good.code, Some(0), "{}", good.stderr);
+    let cfg = format!(
+        "[[sensor]]\nid = 1\nposition = [0.0, 0.0]\nsigma_range = 50.0\nsigma_azimuth_deg = 0.06\n\n[[sensor]]\nid = 2\nposition = [0.0, 0.0]\n\n[estimator]\n{KF}\n[tracker]\n"
+    );
+    let plots =
+        "t,sensor,range,azimuth\n0,1,10000,0.1\n5,1,10500,0.1\n10,1,11000,0.1\n10,2,11000,0.1\n";
+    std::fs::write(dir.path().join("multi.toml"), &cfg).unwrap();
+    std::fs::write(dir.path().join("plots.csv"), plots).unwrap();
+    let o = argus(
+        &[
+            "track",
+            "--config",
+            "multi.toml",
+            "--plots",
+            "plots.csv",
+            "--out",
+            "tracks.csv",
+        ],
+        dir.path(),
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("plots.csv:5: field 'sensor'"), "{err}");
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("tracks.csv")).unwrap(),
+        good.csv
+    );
 }
 
 /// The example of `docs/FORMATS.md` (`docs/examples/tracker.toml` on
