@@ -130,6 +130,7 @@ pub struct EvidenceNoiseImm<F, const N: usize, const R: usize> {
     forgetting: f64,
     clip: Option<f64>,
     post_fit: Option<usize>,
+    observed_information: bool,
 }
 
 impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N, R> {
@@ -175,6 +176,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N
             forgetting,
             clip,
             post_fit: None,
+            observed_information: false,
         })
     }
 
@@ -190,6 +192,16 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N
     #[must_use]
     pub fn with_post_fit(mut self, settle: usize) -> Self {
         self.post_fit = Some(settle);
+        self
+    }
+
+    /// Uses each plot's fitted curvature as its information (`B += β`, `G += γσ̄²`), the
+    /// estimator as first built: a single plot's curvature is noisy, and while `B` holds
+    /// little more than the prior one plot can make `G/B` huge. Kept for comparison
+    /// (docs/papers/000-gimpo.md); the default uses the expected information.
+    #[must_use]
+    pub fn with_observed_information(mut self) -> Self {
+        self.observed_information = true;
         self
     }
 
@@ -236,6 +248,9 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N
                 what: "noise hypotheses",
             });
         }
+        // The anchor IMM's combined posterior in polar coordinates: the residual and
+        // (J P⁺ Jᵀ)ᵢᵢ per axis (`None` when the estimate sits on the radar).
+        let polar = polar_posterior(&imms[0], plot, conversion)?;
         let h = self.step;
         let curv = 2.0 * (h.cosh() - 1.0);
         let anchor = est.anchor.as_array();
@@ -244,8 +259,18 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N
             let (lm, l0, lp) = (ll[*lo], ll[*mid], ll[*hi]);
             let gamma = (lm + lp - 2.0 * l0) / curv;
             let beta = (lp - lm + 2.0 * gamma * h.sinh()) / (2.0 * h);
-            inc[2 * ax] = beta;
-            inc[2 * ax + 1] = gamma * anchor[ax];
+            // The observed score dℓ/du at the anchor (the fitted curve's slope at u = 0).
+            let score = beta - gamma;
+            // Expected information ½w², w = σ̄²/S = 1 − (J P⁺ Jᵀ)ᵢᵢ/σ̄² (scalar Kalman
+            // identity P⁺ = P⁻σ̄²/S), so the curvature is not read off one noisy plot.
+            let w = polar.map_or(0.0, |(_, jpj)| (1.0 - jpj[ax] / anchor[ax]).clamp(0.0, 1.0));
+            let b_inc = if self.observed_information {
+                beta
+            } else {
+                -0.5 * w * w
+            };
+            inc[2 * ax] = b_inc;
+            inc[2 * ax + 1] = (b_inc - score) * anchor[ax];
         }
         let rho = self.forgetting;
         let (mut b, mut g) = (est.b, est.g);
@@ -274,18 +299,10 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N
         if let Some(k) = self.post_fit
             && settled >= k
         {
-            let c = imms[0].combined()?;
-            let p = conversion.position(c.mean());
-            let rng = p.norm();
-            if rng.is_finite() && rng > 0.0 {
-                let (cs, sn) = (p[0] / rng, p[1] / rng);
-                let J = argus_core_math::Matrix::<2, 2>::new(cs, sn, -sn / rng, cs / rng);
-                let JPJ = J * conversion.position_cov(c.cov()) * J.transpose();
-                let e_r = plot.range() - rng;
-                let e_t = crate::variational::wrap_angle(plot.azimuth() - p[1].atan2(p[0]));
+            if let Some((e, jpj)) = polar {
                 post[0] += 1.0;
-                post[1] += e_r * e_r + JPJ[(0, 0)];
-                post[2] += e_t * e_t + JPJ[(1, 1)];
+                post[1] += e[0] * e[0] + jpj[0];
+                post[2] += e[1] * e[1] + jpj[1];
             }
             if post[0] >= 10.0 {
                 target = [post[1] / post[0], post[2] / post[0]];
@@ -301,4 +318,30 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N
             post,
         })
     }
+}
+
+/// `([ε_r, ε_θ], [(J P Jᵀ)_rr, (J P Jᵀ)_θθ])`: a polar residual and posterior variances.
+type PolarMoments = ([f64; 2], [f64; 2]);
+
+/// The polar residual `(ε_r, ε_θ)` of an IMM's combined posterior against `plot`, and
+/// `(J P⁺ Jᵀ)ᵢᵢ` with `J = ∂(r, θ)/∂(x, y)` at the estimate; `None` when the estimate
+/// sits on the radar.
+#[allow(non_snake_case)]
+fn polar_posterior<const N: usize, const R: usize, const M: usize, C: PlotConversion<N, M>>(
+    imm: &ImmEstimate<N, R>,
+    plot: &PolarPlot,
+    conversion: &C,
+) -> Result<Option<PolarMoments>, ImmError> {
+    let c = imm.combined()?;
+    let p = conversion.position(c.mean());
+    let rng = p.norm();
+    if !(rng.is_finite() && rng > 0.0) {
+        return Ok(None);
+    }
+    let (cs, sn) = (p[0] / rng, p[1] / rng);
+    let J = argus_core_math::Matrix::<2, 2>::new(cs, sn, -sn / rng, cs / rng);
+    let JPJ = J * conversion.position_cov(c.cov()) * J.transpose();
+    let e_r = plot.range() - rng;
+    let e_t = crate::variational::wrap_angle(plot.azimuth() - p[1].atan2(p[0]));
+    Ok(Some(([e_r, e_t], [JPJ[(0, 0)], JPJ[(1, 1)]])))
 }

@@ -172,6 +172,13 @@ impl Scenario for Gimpo {
                 max: 1000.0,
                 help: "evidence estimator: report the post-fit moments after this many unclipped steps (0 = the fitted evidence G/B)",
             },
+            ParamSpec {
+                key: "ev_observed",
+                default: 0.0,
+                min: 0.0,
+                max: 1.0,
+                help: "evidence estimator: 1 = each plot's fitted curvature as its information (as first built), 0 = the expected information",
+            },
         ]
     }
 
@@ -235,6 +242,11 @@ impl Scenario for Gimpo {
         let ev = match p.get("ev_settle")? {
             k if k >= 1.0 => ev.with_post_fit(k.round() as usize),
             _ => ev,
+        };
+        let ev = if p.get("ev_observed")? >= 0.5 {
+            ev.with_observed_information()
+        } else {
+            ev
         };
         let conv = UnbiasedConversion::<4>::new(0, 2)?;
         let traj = truth
@@ -681,6 +693,28 @@ impl Scenario for Gimpo {
                     .collect(),
             },
             Figure {
+                name: "fig6_evidence_ratio".into(),
+                title: format!(
+                    "gimpo: evidence estimator, estimated / true variance per axis, mean of {nr} runs"
+                ),
+                x_label: "time (s)".into(),
+                y_label: "variance ratio".into(),
+                lines: STARTS
+                    .iter()
+                    .zip(&ev_r)
+                    .map(|(f, r)| Line {
+                        label: format!("σr² from {f}"),
+                        points: pts(r),
+                        style: LineStyle::Solid,
+                    })
+                    .chain(STARTS.iter().zip(&ev_a).map(|(f, r)| Line {
+                        label: format!("σθ² from {f}"),
+                        points: pts(r),
+                        style: LineStyle::Bound,
+                    }))
+                    .collect(),
+            },
+            Figure {
                 name: "fig7_rms_vs_r".into(),
                 title: format!("gimpo: RMS position error (t ≥ 25 %) vs R factor ({nr} runs)"),
                 x_label: "R factor (fixed, or initial)".into(),
@@ -734,7 +768,8 @@ impl Scenario for Gimpo {
                 "reference ratios are an independent re-implementation's (issue 4), not read off the paper's Fig. 6".into(),
                 "the paper's rule estimates one common scale of R (range and azimuth ratios are identical)".into(),
                 "variational: one IMM + inverse-gamma recursion on polar post-fit residuals, range and azimuth separately".into(),
-                "evidence: five IMMs (anchor, ±h in range, ±h in azimuth), each step's log-likelihoods fitted per axis by a Gaussian-variance curve and accumulated over the track".into(),
+                "evidence: five IMMs (anchor, ±h in range, ±h in azimuth); per axis the observed score of each step's fitted log-likelihood curve with the expected information ½w², accumulated over the track; post-fit read-out once settled".into(),
+                "evidence: range meets the 3 % goal, azimuth does NOT (≈ +6 %: the turns no mode matches inflate cross-range innovations; docs/papers/000-gimpo.md)".into(),
             ],
         })
     }
