@@ -61,8 +61,8 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ekf<Mo> {
         check_dt(dt)?;
         let x = prior.mean();
         let Q = self.model.process_noise(x, dt);
-        let FPFt = self.model.propagate_covariance(x, prior.cov(), dt);
-        covariance_predict(self.model.propagate(x, dt), &FPFt, &Q)
+        let (mean, FPFt) = self.model.propagate_with_covariance(x, prior.cov(), dt);
+        covariance_predict(mean, &FPFt, &Q)
     }
 
     /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.

@@ -95,6 +95,20 @@ impl MotionModel<4> for CoordinatedTurn {
         ct_transition(self.omega, dt)
     }
 
+    /// `F` (with its sine and cosine) formed once for the mean and the covariance.
+    fn propagate_with_covariance(
+        &self,
+        x: &Vector<4>,
+        p: &Matrix<4, 4>,
+        dt: f64,
+    ) -> (Vector<4>, Matrix<4, 4>) {
+        let f = ct_transition(self.omega, dt);
+        (
+            argus_core_math::kernels::mul(&f, x),
+            argus_core_math::kernels::congruence(&f, p),
+        )
+    }
+
     /// `Q = σv² Γ Γᵀ` (seed 000), independent of the state.
     fn process_noise(&self, _x: &Vector<4>, dt: f64) -> Matrix<4, 4> {
         let block = CvNoise::DiscreteWhiteAcceleration {

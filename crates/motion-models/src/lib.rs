@@ -91,6 +91,20 @@ pub trait MotionModel<const N: usize> {
         argus_core_math::kernels::congruence(&self.jacobian(x, dt), p)
     }
 
+    /// The predicted mean and the propagated covariance together: `(f(x, dt), F P Fᵀ)`.
+    ///
+    /// The default calls [`MotionModel::propagate`] and
+    /// [`MotionModel::propagate_covariance`]; a model whose `F` is costly to form (the
+    /// coordinated turn's trigonometry) overrides it to form `F` once.
+    fn propagate_with_covariance(
+        &self,
+        x: &Vector<N>,
+        p: &Matrix<N, N>,
+        dt: f64,
+    ) -> (Vector<N>, Matrix<N, N>) {
+        (self.propagate(x, dt), self.propagate_covariance(x, p, dt))
+    }
+
     /// The Hessians `∂²fᵢ/∂x²`, one per state component, for second-order filters.
     /// `None` when the model does not provide them (a second-order filter then reports an error).
     fn hessians(&self, _x: &Vector<N>, _dt: f64) -> Option<[Matrix<N, N>; N]> {

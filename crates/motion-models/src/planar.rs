@@ -52,6 +52,25 @@ impl MotionModel<4> for PlanarModel {
         }
     }
 
+    fn propagate_covariance(&self, x: &Vector<4>, p: &Matrix<4, 4>, dt: f64) -> Matrix<4, 4> {
+        match self {
+            Self::Cv(m) => m.propagate_covariance(x, p, dt),
+            Self::Ct(m) => m.propagate_covariance(x, p, dt),
+        }
+    }
+
+    fn propagate_with_covariance(
+        &self,
+        x: &Vector<4>,
+        p: &Matrix<4, 4>,
+        dt: f64,
+    ) -> (Vector<4>, Matrix<4, 4>) {
+        match self {
+            Self::Cv(m) => m.propagate_with_covariance(x, p, dt),
+            Self::Ct(m) => m.propagate_with_covariance(x, p, dt),
+        }
+    }
+
     fn hessians(&self, x: &Vector<4>, dt: f64) -> Option<[Matrix<4, 4>; 4]> {
         match self {
             Self::Cv(m) => m.hessians(x, dt),
@@ -72,6 +91,35 @@ impl LinearMotionModel<4> for PlanarModel {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn joint_propagation_equals_the_separate_products() {
+        // The structured / joint paths against f(x) and the literal F P Fᵀ; tolerance:
+        // round-off of sums of products of entries ≲ 10⁴.
+        #[rustfmt::skip]
+        let p = Matrix::<4, 4>::new(
+            900.0, 60.0, 100.0, 0.0,
+            60.0, 100.0, 0.0, 5.0,
+            100.0, 0.0, 700.0, 40.0,
+            0.0, 5.0, 40.0, 80.0,
+        );
+        let x = Vector::<4>::new(1000.0, 120.0, -500.0, -80.0);
+        for m in [
+            PlanarModel::from(Cv2D::discrete(0.5).unwrap()),
+            PlanarModel::from(CoordinatedTurn::from_degrees_per_second(3.0, 0.5).unwrap()),
+            PlanarModel::from(CoordinatedTurn::from_degrees_per_second(-1e-9, 0.5).unwrap()),
+        ] {
+            for dt in [0.1, 2.0, 5.0] {
+                let f = m.jacobian(&x, dt);
+                let full = f * p * f.transpose();
+                let (mean, cov) = m.propagate_with_covariance(&x, &p, dt);
+                assert!((mean - m.propagate(&x, dt)).amax() < 1e-12 * x.amax());
+                assert!((cov - full).amax() < 1e-12 * full.amax());
+                assert!((m.propagate_covariance(&x, &p, dt) - full).amax() < 1e-12 * full.amax());
+                assert_eq!(cov, cov.transpose());
+            }
+        }
+    }
 
     #[test]
     fn delegates_to_wrapped_models() {
