@@ -7,7 +7,7 @@
 use std::process::Command;
 
 /// Keys of the three tracker configurations in `summary.json`.
-const CONFIGS: [&str; 3] = ["gnn_kf", "gnn_imm", "jpda_kf"];
+const CONFIGS: [&str; 4] = ["gnn_kf", "gnn_imm", "jpda_kf", "jpda_imm"];
 
 #[test]
 fn reduced_campaign_beats_no_tracks_with_few_false_tracks() {

@@ -9,10 +9,9 @@
 //! [`ConversionMethod::Unbiased`], evaluated at the plot) and fed to
 //! [`argus_tracker::Tracker`].
 //!
-//! Three tracker configurations run on the same plots of every run: GNN with a Kalman
-//! filter per track (`gnn_kf`), GNN with a two-mode CV IMM per track (`gnn_imm`), and
-//! JPDA with a Kalman filter (`jpda_kf`). JPDA with the IMM estimator is not built in
-//! the tracker yet, so it is not run.
+//! Four tracker configurations run on the same plots of every run: GNN with a Kalman
+//! filter per track (`gnn_kf`), GNN with a two-mode CV IMM per track (`gnn_imm`), JPDA
+//! with a Kalman filter (`jpda_kf`) and JPDA with the IMM (IMM-JPDA, `jpda_imm`).
 //!
 //! At each scan the confirmed tracks' positions are scored against the truth with
 //! OSPA and GOSPA (α = 2, cut-off `cutoff`, order `order`; GOSPA split into
@@ -63,10 +62,11 @@ use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
 pub(crate) struct Surveillance;
 
 /// The tracker configurations compared: summary key prefix and legend label.
-const CONFIGS: [(&str, &str); 3] = [
+const CONFIGS: [(&str, &str); 4] = [
     ("gnn_kf", "GNN, KF"),
     ("gnn_imm", "GNN, IMM"),
     ("jpda_kf", "JPDA, KF"),
+    ("jpda_imm", "JPDA, IMM"),
 ];
 
 /// The radar's id in `argus_sim` and in the tracker.
@@ -215,6 +215,11 @@ impl Setup {
             },
             TrackerConfig {
                 association: jpda,
+                ..base.clone()
+            },
+            TrackerConfig {
+                association: jpda,
+                estimator: imm,
                 ..base
             },
         ];
@@ -832,7 +837,7 @@ impl Campaign for Surveillance {
                 ),
             ],
             notes: vec![format!(
-                "clutter {} plots/scan (λ = {:.3e} /m²); plots: polar σr = {} m, σθ = {:.3}°, unbiased conversion with its covariance; JPDA with the IMM estimator is not built in argus-tracker yet",
+                "clutter {} plots/scan (λ = {:.3e} /m²); plots: polar σr = {} m, σθ = {:.3}°, unbiased conversion with its covariance",
                 s.clutter,
                 s.clutter / (PI * s.range * s.range),
                 s.sigma_r,
