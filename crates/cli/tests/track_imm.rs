@@ -5,15 +5,9 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn argus(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_argus"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::argus;
 
 /// The paper's IMM (seed 000 eqs (15)–(20)) for a radar with the given σ.
 fn config(kind: &str, sigma_range: f64, sigma_az_deg: f64, extra: &str) -> String {
