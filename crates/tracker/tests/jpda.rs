@@ -237,3 +237,79 @@ fn imm_jpda_with_identical_modes_is_jpda_with_the_kf() {
         "the scene never had both tracks updated near the crossing"
     );
 }
+
+#[test]
+fn one_track_jpda_is_the_pda_of_the_clutter_issue() {
+    // Issue 9: "the PDA of the clutter issue as the one-track case". A confirmed track alone,
+    // one scan with the target's plot and two clutter plots inside its gate: the tracker's
+    // JPDA (exact events of a one-track cluster, moment-matched mixture of the per-plot
+    // Kalman posteriors) against argus_association's parametric PDA (Bar-Shalom & Tse's
+    // combined update with the spread of the innovations) on the same prediction. The two
+    // are the same estimator written two ways, so they agree to round-off (1e-9 relative).
+    use argus_association::{Associator, Candidate, ClutterModel, Gate, Pda};
+    use argus_filters::{GaussianFilter, Kf};
+    use argus_motion_models::Cv2D;
+    use argus_sensors::CartesianPosition;
+
+    let (p_d, lambda) = (0.9, 1e-7);
+    let mut cfg = TrackerConfig::new(vec![S0]);
+    cfg.association = AssociationConfig::Jpda {
+        p_detection: p_d,
+        clutter_density: lambda,
+        max_exact_events: 1000,
+    };
+    let r = Matrix::<2, 2>::new(2500.0, 300.0, 300.0, 1600.0);
+    let mut tracker = Tracker::new(cfg.clone()).unwrap();
+    let truth = |t: f64| Vector::<2>::new(10_000.0 + 150.0 * t, -5_000.0 + 80.0 * t);
+    let noise = [(30.0, -20.0), (-45.0, 10.0), (12.0, 35.0), (-8.0, -40.0)];
+    for (k, (ex, ey)) in noise.iter().enumerate() {
+        let t = T * k as f64;
+        let z = truth(t) + Vector::<2>::new(*ex, *ey);
+        tracker
+            .process_scan(t, S0, &[Plot::cartesian(t, S0, z, r)])
+            .unwrap();
+    }
+    assert_eq!(tracker.tracks().len(), 1);
+    assert_eq!(tracker.tracks()[0].status(), TrackStatus::Confirmed);
+    let before = *tracker.tracks()[0].estimate();
+
+    let t = T * noise.len() as f64;
+    let zs = [
+        truth(t) + Vector::<2>::new(20.0, 25.0),
+        truth(t) + Vector::<2>::new(-70.0, 40.0),
+        truth(t) + Vector::<2>::new(55.0, -60.0),
+    ];
+    let plots: Vec<Plot> = zs.iter().map(|z| Plot::cartesian(t, S0, *z, r)).collect();
+    tracker.process_scan(t, S0, &plots).unwrap();
+    assert_eq!(
+        tracker.tracks().len(),
+        1,
+        "clutter inside the gate is spent"
+    );
+    let jpda = *tracker.tracks()[0].estimate();
+
+    let kf = Kf::new(Cv2D::discrete(cfg.sigma_a).unwrap());
+    let pred = kf.predict(&before, T).unwrap();
+    let model = CartesianPosition::<4, 2>::cv(r).unwrap();
+    let mp = kf.predict_measurement(&pred, &model).unwrap();
+    let pda = Pda::new(
+        Gate::from_probability(cfg.gate_probability, 2).unwrap(),
+        p_d,
+        ClutterModel::Poisson { density: lambda },
+    )
+    .unwrap();
+    let candidates: Vec<Candidate<2>> = zs.iter().map(|z| Candidate::new(*z)).collect();
+    let out = pda.associate(&pred, &mp, &model, &candidates).unwrap();
+    assert_eq!(out.gated, 3, "all three plots inside the gate");
+    let (m, p) = (out.posterior.mean(), out.posterior.cov());
+    assert!(
+        (jpda.mean() - m).amax() < 1e-9 * m.amax(),
+        "{} vs {m}",
+        jpda.mean()
+    );
+    assert!(
+        (jpda.cov() - p).amax() < 1e-9 * p.amax(),
+        "{} vs {p}",
+        jpda.cov()
+    );
+}
