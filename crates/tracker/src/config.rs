@@ -164,8 +164,9 @@ pub enum EstimatorConfig {
     Ekf,
     /// A two-mode IMM of CV Kalman filters, a quiet mode (`sigma_a_low`) and a
     /// manoeuvre mode (`sigma_a_high`), with probability `p_stay` of staying in a mode
-    /// from one scan to the next, both modes equally likely at initiation. Gating uses
-    /// the moment-matched predicted estimate; the score uses the IMM's total likelihood.
+    /// from one scan to the next, both modes equally likely at initiation. A plot is
+    /// gated when it is in some mode's gate (GNN's cost is its smallest normalised
+    /// distance over the modes); the score uses the IMM's total likelihood.
     ImmCv2 {
         /// Acceleration standard deviation of the quiet mode (m/s²).
         sigma_a_low: f64,

@@ -490,7 +490,15 @@ impl Tracker {
             let Some(pred) = self.predicted[k].as_ref() else {
                 continue;
             };
-            let (centre, half) = self.query_box(k, pred, gamma, r_max);
+            // An IMM track is gated per mode (a plot in any mode's gate, at its smallest
+            // normalised distance), as in IMM-JPDA: gating on the moment-matched prediction
+            // alone, dominated by the quiet mode, loses aircraft entering a turn.
+            let imm =
+                (self.est.imm.as_ref()).zip(self.imm_predicted.get(k).and_then(Option::as_ref));
+            let (centre, half) = match imm {
+                Some((_, ip)) => imm_gate_box(ip, gamma, r_max),
+                None => self.query_box(k, pred, gamma, r_max),
+            };
             let row = rows.len();
             let polar = self.polar_of(k);
             let (points, used) = (&self.points, &self.used);
@@ -501,7 +509,11 @@ impl Tracker {
                 if used[j] || !in_box(&points[j].position, &centre, half) {
                     return;
                 }
-                let Some((nis, _)) = innovation(pred, polar, &points[j]) else {
+                let gated = match imm {
+                    Some((imm, ip)) => imm_innovation(imm, ip, &points[j]),
+                    None => innovation(pred, polar, &points[j]),
+                };
+                let Some((nis, _)) = gated else {
                     return;
                 };
                 if nis <= gamma {
