@@ -477,6 +477,44 @@ impl Tracker {
         (centre, half)
     }
 
+    /// Calls `f(plot, νᵀS⁻¹ν, ln-likelihood per m²)` for every unused plot inside track
+    /// `k`'s gate (`νᵀS⁻¹ν ≤ gamma`), found through the grid. An IMM track is gated per
+    /// mode (a plot in any mode's gate, at its smallest normalised distance, with the
+    /// mode-mixed likelihood), as IMM-JPDA needs: gating on the moment-matched prediction
+    /// alone, dominated by the quiet mode, loses aircraft entering a turn.
+    fn gate_track(
+        &self,
+        k: usize,
+        pred: &Gaussian<4>,
+        gamma: f64,
+        r_max: [f64; 2],
+        mut f: impl FnMut(usize, f64, f64),
+    ) {
+        let imm = (self.est.imm.as_ref()).zip(self.imm_predicted.get(k).and_then(Option::as_ref));
+        let (centre, half) = match imm {
+            Some((_, ip)) => imm_gate_box(ip, gamma, r_max),
+            None => self.query_box(k, pred, gamma, r_max),
+        };
+        let polar = self.polar_of(k);
+        let (points, used) = (&self.points, &self.used);
+        self.grid.query(&centre, half, |j| {
+            // The gate ellipse lies inside the box (|ν_i| ≤ √(γ S_ii) ≤ half_i): skip the
+            // plots of the cells met that are outside it before forming S.
+            if used[j] || !in_box(&points[j].position, &centre, half) {
+                return;
+            }
+            let gated = match imm {
+                Some((imm, ip)) => imm_innovation(imm, ip, &points[j]),
+                None => innovation(pred, polar, &points[j]),
+            };
+            if let Some((nis, ll)) = gated
+                && nis <= gamma
+            {
+                f(j, nis, ll);
+            }
+        });
+    }
+
     /// Gates the unused plots against the tracks of one status and assigns by GNN.
     fn associate(&mut self, status: TrackStatus, r_max: [f64; 2]) {
         let gamma = self.gate.gamma();
@@ -490,36 +528,11 @@ impl Tracker {
             let Some(pred) = self.predicted[k].as_ref() else {
                 continue;
             };
-            // An IMM track is gated per mode (a plot in any mode's gate, at its smallest
-            // normalised distance), as in IMM-JPDA: gating on the moment-matched prediction
-            // alone, dominated by the quiet mode, loses aircraft entering a turn.
-            let imm =
-                (self.est.imm.as_ref()).zip(self.imm_predicted.get(k).and_then(Option::as_ref));
-            let (centre, half) = match imm {
-                Some((_, ip)) => imm_gate_box(ip, gamma, r_max),
-                None => self.query_box(k, pred, gamma, r_max),
-            };
             let row = rows.len();
-            let polar = self.polar_of(k);
-            let (points, used) = (&self.points, &self.used);
             let mut any = false;
-            self.grid.query(&centre, half, |j| {
-                // The gate ellipse lies inside the box (|ν_i| ≤ √(γ S_ii) ≤ half_i):
-                // skip the plots of the cells met that are outside it before forming S.
-                if used[j] || !in_box(&points[j].position, &centre, half) {
-                    return;
-                }
-                let gated = match imm {
-                    Some((imm, ip)) => imm_innovation(imm, ip, &points[j]),
-                    None => innovation(pred, polar, &points[j]),
-                };
-                let Some((nis, _)) = gated else {
-                    return;
-                };
-                if nis <= gamma {
-                    edges.push((row, j, nis));
-                    any = true;
-                }
+            self.gate_track(k, pred, gamma, r_max, |j, nis, _| {
+                edges.push((row, j, nis));
+                any = true;
             });
             if any {
                 rows.push(k);
@@ -553,27 +566,9 @@ impl Tracker {
             let Some(pred) = self.predicted[k].as_ref() else {
                 continue;
             };
-            let imm =
-                (self.est.imm.as_ref()).zip(self.imm_predicted.get(k).and_then(Option::as_ref));
-            let (centre, half) = match imm {
-                Some((_, ip)) => imm_gate_box(ip, gamma, r_max),
-                None => self.query_box(k, pred, gamma, r_max),
-            };
-            let polar = self.polar_of(k);
-            let points = &self.points;
-            self.grid.query(&centre, half, |j| {
-                if !in_box(&points[j].position, &centre, half) {
-                    return;
-                }
-                let gated = match imm {
-                    Some((imm, ip)) => imm_innovation(imm, ip, &points[j]),
-                    None => innovation(pred, polar, &points[j]),
-                };
-                let Some((nis, ll)) = gated else {
-                    return;
-                };
+            self.gate_track(k, pred, gamma, r_max, |j, _, ll| {
                 let g = p_d * ll.exp() / lambda;
-                if nis <= gamma && g.is_finite() {
+                if g.is_finite() {
                     pairs.push((k, j, g));
                 }
             });
