@@ -62,6 +62,30 @@ impl<const N: usize> Gaussian<N> {
         Ok(Self { mean, cov })
     }
 
+    /// Builds a Gaussian whose covariance is the lower triangle of `cov`, mirrored (the
+    /// strict upper triangle is not read): for a filter's output, which is symmetric by
+    /// construction and computed as its lower triangle (or mirrored already), this skips
+    /// the averaging of [`Gaussian::from_symmetrized`].
+    ///
+    /// # Errors
+    /// [`MathError::NonFinite`] or [`MathError::NotPositiveDefinite`].
+    #[inline]
+    pub fn from_lower_triangle(mean: Vector<N>, cov: &Matrix<N, N>) -> Result<Self, MathError> {
+        check_finite_vector(&mean, "mean")?;
+        let mut cov = *cov;
+        crate::kernels::mirror_lower(&mut cov);
+        // The LDLᵀ pivot test reads the lower triangle and fails on non-finite entries too;
+        // only then is the cause named.
+        if !is_positive_definite(&cov) {
+            return Err(if all_finite(cov.as_slice()) {
+                MathError::NotPositiveDefinite { what: "covariance" }
+            } else {
+                MathError::NonFinite { what: "covariance" }
+            });
+        }
+        Ok(Self { mean, cov })
+    }
+
     /// The mean.
     #[must_use]
     pub fn mean(&self) -> &Vector<N> {
@@ -134,6 +158,29 @@ mod tests {
         let c = Matrix::<2, 2>::new(2.0, 0.5 + 1e-12, 0.5, 1.0);
         let g = Gaussian::new(Vector::<2>::zeros(), c).unwrap();
         assert_eq!(g.cov()[(0, 1)].to_bits(), g.cov()[(1, 0)].to_bits());
+    }
+
+    #[test]
+    fn lower_triangle_constructor_mirrors_and_checks() {
+        // The strict upper triangle is ignored (here a wrong 9.0); the result is symmetric.
+        let c = Matrix::<2, 2>::new(2.0, 9.0, 0.5, 1.0);
+        let g = Gaussian::from_lower_triangle(Vector::<2>::zeros(), &c).unwrap();
+        assert_eq!(*g.cov(), Matrix::<2, 2>::new(2.0, 0.5, 0.5, 1.0));
+        // det = 1 − 4 < 0 in the lower triangle: indefinite.
+        let bad = Matrix::<2, 2>::new(1.0, 0.0, 2.0, 1.0);
+        assert!(matches!(
+            Gaussian::from_lower_triangle(Vector::<2>::zeros(), &bad),
+            Err(MathError::NotPositiveDefinite { .. })
+        ));
+        let nan = Matrix::<2, 2>::new(1.0, 0.0, f64::NAN, 1.0);
+        assert!(matches!(
+            Gaussian::from_lower_triangle(Vector::<2>::zeros(), &nan),
+            Err(MathError::NonFinite { .. })
+        ));
+        assert!(matches!(
+            Gaussian::from_lower_triangle(Vector::<2>::new(f64::NAN, 0.0), &c),
+            Err(MathError::NonFinite { what: "mean" })
+        ));
     }
 
     #[test]

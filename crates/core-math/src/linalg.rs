@@ -1,7 +1,5 @@
 //! Cholesky-based algebra on small stack matrices.
 
-use nalgebra::{Cholesky, Const};
-
 use crate::{MathError, Matrix, Vector};
 
 /// Relative tolerance used to decide whether a matrix is symmetric.
@@ -82,11 +80,15 @@ pub fn is_positive_definite<const N: usize>(a: &Matrix<N, N>) -> bool {
     // storage: `m[j][i]` is entry (i, j)); the pivots are the `dⱼ` of `LDLᵀ`.
     // No early exit: fixed trip counts let the compiler unroll the elimination for the
     // small `N` of a filter; after a bad pivot the rest may be NaN, which changes nothing.
+    // The pivots pass when the smallest is positive and their sum is finite (a NaN or
+    // ±∞ pivot makes the sum non-finite): two float operations per pivot, one test.
     let mut m = a.data.0;
-    let mut ok = true;
+    let mut smallest = f64::INFINITY;
+    let mut sum = 0.0;
     for j in 0..N {
         let d = m[j][j];
-        ok &= d > 0.0 && d.is_finite();
+        smallest = smallest.min(d);
+        sum += d;
         let inv = 1.0 / d;
         for c in j + 1..N {
             let f = m[j][c] * inv;
@@ -95,17 +97,22 @@ pub fn is_positive_definite<const N: usize>(a: &Matrix<N, N>) -> bool {
             }
         }
     }
-    ok
+    smallest > 0.0 && sum.is_finite()
 }
 
 /// The Cholesky factor `A = L Lᵀ` of a symmetric positive-definite matrix, with
 /// the solves and determinants built on it.
 ///
 /// Construction checks finiteness and symmetry, then positive definiteness
-/// (the factorisation itself fails otherwise).
-#[derive(Debug, Clone)]
+/// (the factorisation itself fails otherwise). The factor is computed here on the
+/// stack arrays (the Cholesky–Banachiewicz recursion, Golub & Van Loan 2013, §4.2.5)
+/// with the reciprocals of its diagonal kept, so the solves multiply instead of dividing.
+#[derive(Debug, Clone, Copy)]
 pub struct SpdFactor<const N: usize> {
-    chol: Cholesky<f64, Const<N>>,
+    /// `L`, column-major (`l[j][i]` is `L(i, j)`); the strict upper triangle is zero.
+    l: [[f64; N]; N],
+    /// `1 / L(i, i)`.
+    inv_diag: [f64; N],
 }
 
 impl<const N: usize> SpdFactor<N> {
@@ -132,29 +139,53 @@ impl<const N: usize> SpdFactor<N> {
     /// # Errors
     /// [`MathError::NonFinite`] or [`MathError::NotPositiveDefinite`], naming `what`.
     #[inline]
+    #[expect(
+        clippy::needless_range_loop,
+        reason = "the recursion reads row i and row j of L while it writes L(i, j)"
+    )]
     pub fn new_symmetric(a: &Matrix<N, N>, what: &'static str) -> Result<Self, MathError> {
-        // Fast path: factor first; a NaN or ∞ in `a` makes the factorisation fail or
-        // leaves a non-finite entry in the factor, and only then is `a` examined to
-        // name the cause (non-finite input vs not positive definite).
-        let diagnose = || {
-            check_finite_matrix(a, what)
-                .err()
-                .unwrap_or(MathError::NotPositiveDefinite { what })
-        };
-        let Some(chol) = Cholesky::new(*a) else {
-            return Err(diagnose());
-        };
-        // nalgebra accepts tiny positive pivots; reject factors that are not finite.
-        if !all_finite(chol.l_dirty().as_slice()) {
-            return Err(diagnose());
+        // Every entry of the lower triangle reaches a pivot `d_i` (as `L(i, j)²`), so a NaN or
+        // ±∞ anywhere in it makes some pivot fail the test: one check covers non-finite
+        // input and indefiniteness; only then is `a` examined to name the cause.
+        let a = &a.data.0;
+        let mut l = [[0.0; N]; N];
+        let mut inv_diag = [0.0; N];
+        let mut smallest = f64::INFINITY;
+        let mut sum = 0.0;
+        for j in 0..N {
+            let mut d = a[j][j];
+            for k in 0..j {
+                d -= l[k][j] * l[k][j];
+            }
+            // As in `is_positive_definite`: the smallest pivot positive, their sum finite.
+            smallest = smallest.min(d);
+            sum += d;
+            let ljj = d.sqrt();
+            let inv = 1.0 / ljj;
+            l[j][j] = ljj;
+            inv_diag[j] = inv;
+            for i in j + 1..N {
+                let mut s = a[j][i];
+                for k in 0..j {
+                    s -= l[k][i] * l[k][j];
+                }
+                l[j][i] = s * inv;
+            }
         }
-        Ok(Self { chol })
+        if smallest > 0.0 && sum.is_finite() {
+            Ok(Self { l, inv_diag })
+        } else {
+            let full = Matrix::<N, N>::from_data(nalgebra::ArrayStorage(*a));
+            Err(check_finite_matrix(&full, what)
+                .err()
+                .unwrap_or(MathError::NotPositiveDefinite { what }))
+        }
     }
 
     /// The lower-triangular factor `L`.
     #[must_use]
     pub fn l(&self) -> Matrix<N, N> {
-        self.chol.l()
+        Matrix::<N, N>::from_data(nalgebra::ArrayStorage(self.l))
     }
 
     /// Solves `A x = b`.
@@ -170,7 +201,7 @@ impl<const N: usize> SpdFactor<N> {
     pub fn solve_matrix<const C: usize>(&self, b: &Matrix<N, C>) -> Matrix<N, C> {
         // Forward then back substitution on the stack arrays (column-major: `l[j][i]`
         // is L(i, j)); fixed trip counts that the compiler unrolls for small `N`.
-        let l = &self.chol.l_dirty().data.0;
+        let l = &self.l;
         let mut x = *b;
         for col in &mut x.data.0 {
             for i in 0..N {
@@ -178,14 +209,14 @@ impl<const N: usize> SpdFactor<N> {
                 for k in 0..i {
                     s -= l[k][i] * col[k];
                 }
-                col[i] = s / l[i][i];
+                col[i] = s * self.inv_diag[i];
             }
             for i in (0..N).rev() {
                 let mut s = col[i];
                 for k in i + 1..N {
                     s -= l[i][k] * col[k];
                 }
-                col[i] = s / l[i][i];
+                col[i] = s * self.inv_diag[i];
             }
         }
         x
@@ -194,21 +225,20 @@ impl<const N: usize> SpdFactor<N> {
     /// The inverse `A⁻¹` (symmetrised).
     #[must_use]
     pub fn inverse(&self) -> Matrix<N, N> {
-        symmetrize(&self.chol.inverse())
+        symmetrize(&self.solve_matrix(&Matrix::<N, N>::identity()))
     }
 
     /// `ln |A|`, computed as `2 Σ ln Lᵢᵢ` (no overflow or underflow of the determinant).
     #[must_use]
     #[inline]
     pub fn log_det(&self) -> f64 {
-        let l = self.chol.l_dirty();
         // One logarithm of the product of the pivots when that product is a normal
         // float; otherwise (under- or overflow) the sum of logarithms.
-        let product: f64 = (0..N).map(|i| l[(i, i)]).product();
+        let product: f64 = (0..N).map(|i| self.l[i][i]).product();
         if product.is_normal() {
             2.0 * product.ln()
         } else {
-            2.0 * (0..N).map(|i| l[(i, i)].ln()).sum::<f64>()
+            2.0 * (0..N).map(|i| self.l[i][i].ln()).sum::<f64>()
         }
     }
 
@@ -217,7 +247,7 @@ impl<const N: usize> SpdFactor<N> {
     #[inline]
     pub fn mahalanobis_sq(&self, v: &Vector<N>) -> f64 {
         // `‖L⁻¹ v‖²` by forward substitution (see `solve_matrix`).
-        let l = &self.chol.l_dirty().data.0;
+        let l = &self.l;
         let mut w = v.data.0[0];
         let mut sum = 0.0;
         for i in 0..N {
@@ -225,7 +255,7 @@ impl<const N: usize> SpdFactor<N> {
             for k in 0..i {
                 s -= l[k][i] * w[k];
             }
-            w[i] = s / l[i][i];
+            w[i] = s * self.inv_diag[i];
             sum += w[i] * w[i];
         }
         sum
@@ -300,6 +330,7 @@ pub fn joseph_update_from_cross<const N: usize, const M: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Cholesky;
     use proptest::prelude::*;
 
     fn spd3(seed: [f64; 9]) -> Matrix<3, 3> {

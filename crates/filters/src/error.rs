@@ -38,7 +38,7 @@ pub enum FilterError {
 /// # Errors
 /// [`FilterError::InvalidInterval`].
 pub fn check_dt(dt: f64) -> Result<(), FilterError> {
-    if dt.is_finite() && dt > 0.0 {
+    if dt > 0.0 && dt < f64::INFINITY {
         Ok(())
     } else {
         Err(FilterError::InvalidInterval { dt })

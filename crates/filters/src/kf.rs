@@ -277,4 +277,37 @@ mod tests {
             "{err:?}"
         );
     }
+
+    proptest::proptest! {
+        #[test]
+        fn selection_path_equals_general_path(
+            a in proptest::array::uniform16(-3.0f64..3.0),
+            r in proptest::array::uniform3(0.1f64..2.0),
+            z in proptest::array::uniform2(-5.0f64..5.0),
+        ) {
+            // `CartesianPosition` declares its selection (gathers in S, P Hᵀ and the Joseph
+            // update); `Pos2` is the same H and R through the general products. Both forms
+            // must agree to round-off (entries of order 10², tolerance 1e-12 relative).
+            let m = Matrix::<4, 4>::from_row_slice(&a);
+            let prior = Gaussian::from_lower_triangle(
+                Vector::<4>::new(1.0, -2.0, 0.5, 3.0),
+                &(m * m.transpose() + Matrix::<4, 4>::identity()),
+            )
+            .unwrap();
+            let rm = Matrix::<2, 2>::new(r[0], 0.3 * r[1].min(r[0]), 0.3 * r[1].min(r[0]), r[1] + r[2]);
+            let general = Pos2 { r: rm };
+            let selected = argus_sensors::CartesianPosition::<4, 2>::cv(rm).unwrap();
+            let z = Vector::<2>::new(z[0], z[1]);
+            for form in [CovarianceForm::Joseph, CovarianceForm::Standard] {
+                let kf = Kf::with_form(Cv2 { q: 0.5 }, form);
+                let pred = kf.predict(&prior, 1.5).unwrap();
+                let (pa, ia) = kf.update(&pred, &general, &z).unwrap();
+                let (pb, ib) = kf.update(&pred, &selected, &z).unwrap();
+                let tol = 1e-12 * (1.0 + pred.cov().amax());
+                proptest::prop_assert!((pa.cov() - pb.cov()).amax() < tol);
+                proptest::prop_assert!((pa.mean() - pb.mean()).amax() < tol);
+                proptest::prop_assert!((ia.log_likelihood - ib.log_likelihood).abs() < 1e-12 * (1.0 + ia.log_likelihood.abs()));
+            }
+        }
+    }
 }

@@ -1,8 +1,6 @@
 //! Helpers shared by the linearised filters (KF, EKF, second-order EKF, CD-EKF).
 
-use argus_core_math::{
-    Gaussian, MathError, Matrix, Vector, check_finite_matrix, check_finite_vector, kernels,
-};
+use argus_core_math::{Gaussian, MathError, Matrix, Vector, check_finite_matrix, kernels};
 use argus_sensors::MeasurementModel;
 
 use crate::{CovarianceForm, FilterError, MeasurementPrediction};
@@ -17,11 +15,15 @@ pub(crate) fn checked_gaussian<const N: usize>(
     what_mean: &'static str,
     what_cov: &'static str,
 ) -> Result<Gaussian<N>, FilterError> {
-    check_finite_vector(&mean, what_mean)?;
-    // `from_symmetrized` tells a non-finite covariance from a non-positive-definite one.
-    Gaussian::from_symmetrized(mean, cov).map_err(|e| match e {
+    // `from_lower_triangle` checks the mean and tells a non-finite covariance from a
+    // non-positive-definite one. Every filter's covariance is symmetric by construction;
+    // its lower triangle is kept.
+    Gaussian::from_lower_triangle(mean, cov).map_err(|e| match e {
         MathError::NotPositiveDefinite { .. } => {
             FilterError::Math(MathError::NotPositiveDefinite { what: what_cov })
+        }
+        MathError::NonFinite { what: "mean" } => {
+            FilterError::Math(MathError::NonFinite { what: what_mean })
         }
         MathError::NonFinite { .. } => FilterError::Math(MathError::NonFinite { what: what_cov }),
         other => FilterError::Math(other),
@@ -65,6 +67,17 @@ where
     let R = meas.noise(x);
     check_finite_matrix(&H, "measurement Jacobian H")?;
     check_finite_matrix(&R, "measurement noise R")?;
+    if let Some(idx) = meas.selection().filter(|idx| idx.iter().all(|&i| i < N)) {
+        // `H` selects entries: `P Hᵀ` is columns `idx` of `P`, `H P Hᵀ` rows `idx` of those.
+        let mut PHt = Matrix::<N, M>::zeros();
+        for (col, &i) in PHt.data.0.iter_mut().zip(&idx) {
+            *col = P.data.0[i];
+        }
+        let S = Matrix::<M, M>::from_fn(|r, c| PHt[(idx[r], c)]) + R;
+        return Ok(
+            MeasurementPrediction::new(z_pred, S, PHt, Some(H), R, form)?.with_selection(idx),
+        );
+    }
     let PHt = kernels::mul_transpose(P, &H);
     let S = kernels::mul(&H, &PHt) + R;
     MeasurementPrediction::new(z_pred, S, PHt, Some(H), R, form)

@@ -35,30 +35,39 @@ pub(crate) fn block_mul_vec<const N: usize, const B: usize>(
 }
 
 /// `F P Fᵀ` for `F = diag(A, A, …)` (`N / B` blocks): block `(i, j)` of the result is
-/// `A P_ij Aᵀ`. Only the blocks on and below the diagonal are computed; the rest is
-/// their mirror, so the result is exactly symmetric. Components past the last whole
-/// block (none for the models here) keep `F = I`.
+/// `A P_ij Aᵀ`, computed by `blk` (the model's closed form, or the two products). Only the
+/// blocks on and below the diagonal are computed; diagonal blocks are mirrored from their
+/// lower triangle and the upper blocks are the transposes of the lower ones, so the result
+/// is exactly symmetric. Components past the last whole block (none for the models here)
+/// keep `F = I`.
 #[inline]
-pub(crate) fn block_congruence<const N: usize, const B: usize>(
-    a: &Matrix<B, B>,
+pub(crate) fn block_congruence_with<const N: usize, const B: usize>(
     p: &Matrix<N, N>,
+    blk: impl Fn(&Matrix<B, B>) -> Matrix<B, B>,
 ) -> Matrix<N, N> {
-    use argus_core_math::kernels::{congruence, mul, mul_transpose};
     let mut out = *p;
     let blocks = N / B;
     for j in 0..blocks {
         let diag: Matrix<B, B> = p.fixed_view::<B, B>(j * B, j * B).into_owned();
-        out.fixed_view_mut::<B, B>(j * B, j * B)
-            .copy_from(&congruence(a, &diag));
+        let mut d = blk(&diag);
+        argus_core_math::kernels::mirror_lower(&mut d);
+        out.fixed_view_mut::<B, B>(j * B, j * B).copy_from(&d);
         for i in j + 1..blocks {
             let off: Matrix<B, B> = p.fixed_view::<B, B>(i * B, j * B).into_owned();
-            let m = mul_transpose(&mul(a, &off), a);
+            let m = blk(&off);
             out.fixed_view_mut::<B, B>(i * B, j * B).copy_from(&m);
             out.fixed_view_mut::<B, B>(j * B, i * B)
                 .copy_from(&m.transpose());
         }
     }
     out
+}
+
+/// `A M Aᵀ` by two products (a block of [`block_congruence_with`] for a general `A`).
+#[inline]
+pub(crate) fn block_product<const B: usize>(a: &Matrix<B, B>, m: &Matrix<B, B>) -> Matrix<B, B> {
+    use argus_core_math::kernels::{mul, mul_transpose};
+    mul_transpose(&mul(a, m), a)
 }
 
 macro_rules! impl_block_model {
@@ -79,7 +88,7 @@ macro_rules! impl_block_model {
                 p: &argus_core_math::Matrix<$n, $n>,
                 dt: f64,
             ) -> argus_core_math::Matrix<$n, $n> {
-                $crate::block::block_congruence::<$n, $b>(&Self::axis_transition(dt), p)
+                $crate::block::block_congruence_with::<$n, $b>(p, |m| Self::axis_congruence(dt, m))
             }
 
             fn jacobian(
@@ -134,17 +143,21 @@ mod tests {
         assert!((m.sum() - 30.0).abs() < 1e-15);
     }
 
-    fn check_structured<const N: usize, const B: usize>(a: &Matrix<B, B>, seed: &[f64]) {
+    fn check_structured<const N: usize, M: crate::LinearMotionModel<N>>(
+        model: &M,
+        dt: f64,
+        seed: &[f64],
+    ) {
         let g = Matrix::<N, N>::from_fn(|i, j| seed[(i * N + j) % seed.len()] + (i as f64));
         let p = g * g.transpose() + Matrix::<N, N>::identity();
         let x = argus_core_math::Vector::<N>::from_fn(|i, _| seed[i % seed.len()]);
-        let f = block_diag::<N, B>(a);
+        let f = model.transition(dt);
         let full = f * p * f.transpose();
-        let fast = block_congruence::<N, B>(a, &p);
+        let fast = model.propagate_covariance(&x, &p, dt);
         // Tolerance: the same sums in another order, relative round-off of the products.
         assert!((fast - full).amax() <= 1e-12 * full.amax());
         assert_eq!(fast, fast.transpose());
-        assert!((block_mul_vec::<N, B>(a, &x) - f * x).amax() <= 1e-12 * (f * x).amax());
+        assert!((model.propagate(&x, dt) - f * x).amax() <= 1e-12 * (f * x).amax());
     }
 
     proptest::proptest! {
@@ -153,13 +166,14 @@ mod tests {
             dt in 0.01f64..20.0,
             seed in proptest::collection::vec(-3.0f64..3.0, 7),
         ) {
-            let cv = crate::cv_axis_transition(dt);
-            check_structured::<2, 2>(&cv, &seed);
-            check_structured::<4, 2>(&cv, &seed);
-            check_structured::<6, 2>(&cv, &seed);
-            let ca = crate::ca_axis_transition(dt);
-            check_structured::<6, 3>(&ca, &seed);
-            check_structured::<9, 3>(&ca, &seed);
+            // The CV models' closed-form blocks and the CA models' block products against
+            // the literal F P Fᵀ and F x.
+            check_structured(&crate::Cv1D::discrete(0.5).unwrap(), dt, &seed);
+            check_structured(&crate::Cv2D::discrete(0.5).unwrap(), dt, &seed);
+            check_structured(&crate::Cv3D::discrete(0.5).unwrap(), dt, &seed);
+            check_structured(&crate::Ca1D::discrete(0.5).unwrap(), dt, &seed);
+            check_structured(&crate::Ca2D::discrete(0.5).unwrap(), dt, &seed);
+            check_structured(&crate::Ca3D::discrete(0.5).unwrap(), dt, &seed);
         }
     }
 }

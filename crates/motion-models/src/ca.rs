@@ -158,6 +158,12 @@ macro_rules! ca_model {
             fn axis_noise(&self, dt: f64) -> Matrix<3, 3> {
                 self.noise.axis_covariance(dt)
             }
+
+            /// `A M Aᵀ` for one `3 × 3` block `M` of `P`.
+            #[inline]
+            fn axis_congruence(dt: f64, m: &Matrix<3, 3>) -> Matrix<3, 3> {
+                $crate::block::block_product(&Self::axis_transition(dt), m)
+            }
         }
 
         impl_block_model!($name, $n, 3);

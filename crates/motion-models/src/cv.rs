@@ -164,6 +164,16 @@ macro_rules! cv_model {
             fn axis_noise(&self, dt: f64) -> Matrix<2, 2> {
                 self.noise.axis_covariance(dt)
             }
+
+            /// `A M Aᵀ` for one `2 × 2` block `M` of `P`, `A = [[1, T], [0, 1]]`, in closed
+            /// form: `[[m₀₀ + T m₁₀ + T r₀₁, r₀₁], [m₁₀ + T m₁₁, m₁₁]]` with
+            /// `r₀₁ = m₀₁ + T m₁₁` (five multiply-adds instead of two 2 × 2 products).
+            #[inline]
+            fn axis_congruence(dt: f64, m: &Matrix<2, 2>) -> Matrix<2, 2> {
+                let r01 = m[(0, 1)] + dt * m[(1, 1)];
+                let r10 = m[(1, 0)] + dt * m[(1, 1)];
+                Matrix::<2, 2>::new(m[(0, 0)] + dt * m[(1, 0)] + dt * r01, r01, r10, m[(1, 1)])
+            }
         }
 
         impl_block_model!($name, $n, 2);

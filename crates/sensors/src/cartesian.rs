@@ -94,6 +94,10 @@ impl<const N: usize, const M: usize> MeasurementModel<N, M> for CartesianPositio
     fn hessians(&self, _x: &Vector<N>) -> Option<[Matrix<N, N>; M]> {
         Some([Matrix::<N, N>::zeros(); M])
     }
+
+    fn selection(&self) -> Option<[usize; M]> {
+        Some(self.indices)
+    }
 }
 
 impl<const N: usize, const M: usize> LinearMeasurementModel<N, M> for CartesianPosition<N, M> {

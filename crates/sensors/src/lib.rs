@@ -90,6 +90,15 @@ pub trait MeasurementModel<const N: usize, const M: usize> {
     fn hessians(&self, _x: &Vector<N>) -> Option<[Matrix<N, N>; M]> {
         None
     }
+
+    /// When the measurement picks state entries, `h(x) = (x[i₀], …, x[i_{M−1}])` (so `H`
+    /// is the selection matrix of those indices), the indices; `None` (the default) for
+    /// any other model. Filters then gather rows and columns of `P` instead of
+    /// multiplying by `H`. An implementation must agree with [`MeasurementModel::predict`]
+    /// and [`MeasurementModel::jacobian`]; filters ignore indices `≥ N`.
+    fn selection(&self) -> Option<[usize; M]> {
+        None
+    }
 }
 
 /// A measurement model with `h(x) = H x` (`H` independent of the state).

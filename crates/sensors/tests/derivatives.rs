@@ -135,5 +135,13 @@ proptest! {
         prop_assert!((m.predict(&s) - m.matrix() * s).amax() < 1e-12 * s.amax().max(1.0));
         prop_assert!(close(&m.jacobian(&s), &numeric_jacobian(&m, &s, 1.0), 1e-9));
         prop_assert!(m.hessians(&s).unwrap().iter().all(|h| h.amax() < 1e-300));
+        // The selection it declares is the one H applies: H's row k is the unit vector at
+        // index k, and h(x)_k = x[index k] exactly.
+        let sel = m.selection().unwrap();
+        for (k, &i) in sel.iter().enumerate() {
+            prop_assert!(i < 6);
+            prop_assert!(m.matrix().row(k).iter().enumerate().all(|(j, &v)| (v - f64::from(u8::from(j == i))).abs() < 1e-300));
+            prop_assert!(m.predict(&s)[k].to_bits() == s[i].to_bits());
+        }
     }
 }
