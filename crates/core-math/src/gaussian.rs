@@ -69,10 +69,9 @@ impl<const N: usize> Gaussian<N> {
     ///
     /// # Errors
     /// [`MathError::NonFinite`] or [`MathError::NotPositiveDefinite`].
-    #[inline]
-    pub fn from_lower_triangle(mean: Vector<N>, cov: &Matrix<N, N>) -> Result<Self, MathError> {
+    #[inline(always)]
+    pub fn from_lower_triangle(mean: Vector<N>, mut cov: Matrix<N, N>) -> Result<Self, MathError> {
         check_finite_vector(&mean, "mean")?;
-        let mut cov = *cov;
         crate::kernels::mirror_lower(&mut cov);
         // The LDLᵀ pivot test reads the lower triangle and fails on non-finite entries too;
         // only then is the cause named.
@@ -164,21 +163,21 @@ mod tests {
     fn lower_triangle_constructor_mirrors_and_checks() {
         // The strict upper triangle is ignored (here a wrong 9.0); the result is symmetric.
         let c = Matrix::<2, 2>::new(2.0, 9.0, 0.5, 1.0);
-        let g = Gaussian::from_lower_triangle(Vector::<2>::zeros(), &c).unwrap();
+        let g = Gaussian::from_lower_triangle(Vector::<2>::zeros(), c).unwrap();
         assert_eq!(*g.cov(), Matrix::<2, 2>::new(2.0, 0.5, 0.5, 1.0));
         // det = 1 − 4 < 0 in the lower triangle: indefinite.
         let bad = Matrix::<2, 2>::new(1.0, 0.0, 2.0, 1.0);
         assert!(matches!(
-            Gaussian::from_lower_triangle(Vector::<2>::zeros(), &bad),
+            Gaussian::from_lower_triangle(Vector::<2>::zeros(), bad),
             Err(MathError::NotPositiveDefinite { .. })
         ));
         let nan = Matrix::<2, 2>::new(1.0, 0.0, f64::NAN, 1.0);
         assert!(matches!(
-            Gaussian::from_lower_triangle(Vector::<2>::zeros(), &nan),
+            Gaussian::from_lower_triangle(Vector::<2>::zeros(), nan),
             Err(MathError::NonFinite { .. })
         ));
         assert!(matches!(
-            Gaussian::from_lower_triangle(Vector::<2>::new(f64::NAN, 0.0), &c),
+            Gaussian::from_lower_triangle(Vector::<2>::new(f64::NAN, 0.0), c),
             Err(MathError::NonFinite { what: "mean" })
         ));
     }

@@ -152,7 +152,7 @@ impl<const N: usize, Mo: ContinuousModel<N>> GaussianFilter<N> for CdEkf<Mo> {
             x += (k1x + (k2x + k3x) * 2.0 + k4x) * (h / 6.0);
             P = symmetrize(&(P + (k1p + (k2p + k3p) * 2.0 + k4p) * (h / 6.0)));
         }
-        checked_gaussian(x, &P, "predicted mean", "predicted covariance")
+        checked_gaussian(x, P, "predicted mean", "predicted covariance")
     }
 
     /// The EKF's measurement prediction, or the truncated second-order one when enabled.

@@ -152,7 +152,7 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for SecondOrderEkf<Mo
         let cov = F * P * F.transpose() + dcov + Q;
         checked_gaussian(
             self.model.propagate(x, dt) + dmean,
-            &cov,
+            cov,
             "predicted mean",
             "predicted covariance",
         )

@@ -32,7 +32,7 @@ fn two_point<const D: usize, const N: usize>(
             cov[(2 * a + 1, 2 * b + 1)] = (R1[(a, b)] + R2[(a, b)]) / (dt * dt);
         }
     }
-    checked_gaussian(mean, &cov, "initial mean", "initial covariance")
+    checked_gaussian(mean, cov, "initial mean", "initial covariance")
 }
 
 /// Two-point differencing for a 1-D constant-velocity state `[x, vx]` at the time

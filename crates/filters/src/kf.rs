@@ -291,7 +291,7 @@ mod tests {
             let m = Matrix::<4, 4>::from_row_slice(&a);
             let prior = Gaussian::from_lower_triangle(
                 Vector::<4>::new(1.0, -2.0, 0.5, 3.0),
-                &(m * m.transpose() + Matrix::<4, 4>::identity()),
+                m * m.transpose() + Matrix::<4, 4>::identity(),
             )
             .unwrap();
             let rm = Matrix::<2, 2>::new(r[0], 0.3 * r[1].min(r[0]), 0.3 * r[1].min(r[0]), r[1] + r[2]);

@@ -8,10 +8,10 @@ use crate::{CovarianceForm, FilterError, MeasurementPrediction};
 /// Builds an estimate from a filter stage's mean and covariance, naming the stage
 /// in the error (`what_mean`, `what_cov`) when a value is non-finite or the
 /// covariance is not positive definite.
-#[inline]
+#[inline(always)]
 pub(crate) fn checked_gaussian<const N: usize>(
     mean: Vector<N>,
-    cov: &Matrix<N, N>,
+    cov: Matrix<N, N>,
     what_mean: &'static str,
     what_cov: &'static str,
 ) -> Result<Gaussian<N>, FilterError> {
@@ -42,16 +42,21 @@ pub(crate) fn covariance_predict<const N: usize>(
     FPFt: &Matrix<N, N>,
     Q: &Matrix<N, N>,
 ) -> Result<Gaussian<N>, FilterError> {
-    check_finite_matrix(Q, "process noise Q")?;
     let cov = FPFt + Q;
-    checked_gaussian(mean, &cov, "predicted mean", "predicted covariance")
+    // A non-finite `Q` makes the predicted covariance fail its test; only then is `Q`
+    // examined, to name it as the cause.
+    checked_gaussian(mean, cov, "predicted mean", "predicted covariance").map_err(|e| {
+        check_finite_matrix(Q, "process noise Q")
+            .err()
+            .map_or(e, FilterError::Math)
+    })
 }
 
 /// The first-order measurement prediction at the predicted mean:
 /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.
 /// For a linear measurement `h(x) = H x` this is the Kalman filter's.
 #[allow(non_snake_case)]
-#[inline]
+#[inline(always)]
 pub(crate) fn first_order_measurement<const N: usize, const M: usize, Me>(
     predicted: &Gaussian<N>,
     meas: &Me,
@@ -65,7 +70,6 @@ where
     let z_pred = meas.predict(x);
     let H = meas.jacobian(x);
     let R = meas.noise(x);
-    check_finite_matrix(&H, "measurement Jacobian H")?;
     check_finite_matrix(&R, "measurement noise R")?;
     if let Some(idx) = meas.selection().filter(|idx| idx.iter().all(|&i| i < N)) {
         // `H` selects entries: `P Hᵀ` is columns `idx` of `P`, `H P Hᵀ` rows `idx` of those.
@@ -78,7 +82,13 @@ where
             MeasurementPrediction::new(z_pred, S, PHt, Some(H), R, form)?.with_selection(idx),
         );
     }
+    // A non-finite `H` reaches the diagonal of `S` (through `H P Hᵀ`) and fails its
+    // factorisation; only then is `H` examined, to name it as the cause.
     let PHt = kernels::mul_transpose(P, &H);
     let S = kernels::mul(&H, &PHt) + R;
-    MeasurementPrediction::new(z_pred, S, PHt, Some(H), R, form)
+    MeasurementPrediction::new(z_pred, S, PHt, Some(H), R, form).map_err(|e| {
+        check_finite_matrix(&H, "measurement Jacobian H")
+            .err()
+            .map_or(e, FilterError::Math)
+    })
 }

@@ -58,7 +58,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     ///
     /// # Errors
     /// [`FilterError::Math`] when a value is non-finite or `S` is not positive definite.
-    #[inline]
+    #[inline(always)]
     pub fn new(
         z_pred: Vector<M>,
         s: Matrix<M, M>,
@@ -68,10 +68,12 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
         form: CovarianceForm,
     ) -> Result<Self, FilterError> {
         check_finite_vector(&z_pred, "predicted measurement")?;
-        check_finite_matrix(&cross, "cross covariance")?;
-        let s = argus_core_math::symmetrize(&s);
+        // `S` is read as its lower triangle (mirrored), as the factorisation reads it.
+        let mut s = s;
+        kernels::mirror_lower(&mut s);
         let s_factor = SpdFactor::new_symmetric(&s, "innovation covariance S")?;
-        let gain = s_factor.solve_matrix(&cross.transpose()).transpose();
+        let gain = s_factor.solve_right(&cross);
+        // A non-finite `P_xz` (or an overflow of the division) shows in the gain.
         check_finite_matrix(&gain, "gain")?;
         let log_det_s = s_factor.log_det();
         Ok(Self {
@@ -174,9 +176,12 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
         meas: &Me,
         z: &Vector<M>,
     ) -> Result<Innovation<M>, FilterError> {
-        check_finite_vector(z, "measurement")?;
         let residual = meas.residual(z, &self.z_pred);
-        check_finite_vector(&residual, "residual")?;
+        // A non-finite plot gives a non-finite residual; only then is the plot examined.
+        if let Err(e) = check_finite_vector(&residual, "residual") {
+            check_finite_vector(z, "measurement")?;
+            return Err(e.into());
+        }
         let nis = self.nis(&residual);
         Ok(Innovation {
             residual,
@@ -199,7 +204,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
         check_finite_vector(residual, "residual")?;
         let mean = predicted.mean() + kernels::mul(&self.gain, residual);
         let cov = self.posterior_cov(predicted.cov());
-        crate::linearized::checked_gaussian(mean, &cov, "posterior mean", "posterior covariance")
+        crate::linearized::checked_gaussian(mean, cov, "posterior mean", "posterior covariance")
     }
 
     /// The posterior covariance of an update with a plot (independent of the residual).
@@ -242,7 +247,8 @@ fn joseph_update_selection<const N: usize, const M: usize>(
     for (col, &i) in BHt.data.0.iter_mut().zip(idx) {
         *col = B.data.0[i];
     }
-    let mut out = B - kernels::mul_transpose(&BHt, K);
+    // `B − (B Hᵀ) Kᵀ + K R Kᵀ = B − (B Hᵀ − K R) Kᵀ`: one product with `Kᵀ`.
+    let mut out = B - kernels::mul_transpose(&(BHt - kernels::mul(K, R)), K);
     kernels::mirror_lower(&mut out);
-    out + kernels::congruence(K, R)
+    out
 }

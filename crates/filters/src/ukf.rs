@@ -174,7 +174,7 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ukf<N, Mo> {
         let Q = self.model.process_noise(x, dt);
         check_finite_matrix(&Q, "process noise Q")?;
         let cov = S2 + m * m.transpose() * self.centre_extra + Q;
-        checked_gaussian(y0 + m, &cov, "predicted mean", "predicted covariance")
+        checked_gaussian(y0 + m, cov, "predicted mean", "predicted covariance")
     }
 
     /// Unscented measurement prediction: `ẑ`, `S = P_zz + R(x⁻)`, `P_xz`; measurement
