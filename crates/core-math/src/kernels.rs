@@ -72,6 +72,32 @@ pub fn mirror_lower<const N: usize>(m: &mut Matrix<N, N>) {
     }
 }
 
+/// Subtracts `A Bᵀ` from the lower triangle (diagonal included) of `m`, in place; the
+/// strict upper triangle is not touched. For updates of a symmetric matrix by terms whose
+/// sum is symmetric: apply each, then [`mirror_lower`].
+#[inline]
+#[expect(
+    clippy::needless_range_loop,
+    reason = "row i of column j is updated from row i of A's columns and row j of B's"
+)]
+pub fn sub_mul_transpose_lower<const N: usize, const K: usize>(
+    m: &mut Matrix<N, N>,
+    a: &Matrix<N, K>,
+    b: &Matrix<N, K>,
+) {
+    let o = &mut m.data.0;
+    let a = &a.data.0;
+    let b = &b.data.0;
+    for j in 0..N {
+        for k in 0..K {
+            let bjk = b[k][j];
+            for i in j..N {
+                o[j][i] -= a[k][i] * bjk;
+            }
+        }
+    }
+}
+
 /// The congruence `A P Aᵀ` of a symmetric `P`, made exactly symmetric by mirroring the
 /// lower triangle of `(A P) Aᵀ`.
 #[inline]
@@ -102,6 +128,16 @@ mod tests {
             let tol = 1e-12 * 1e4;
             prop_assert!((mul(&a, &b) - a * b).amax() < tol);
             prop_assert!((mul_transpose(&a, &c) - a * c.transpose()).amax() < tol);
+            let mut lower = p;
+            // Lower triangle of P − b (cᵀ)ᵀ; the upper triangle untouched.
+            sub_mul_transpose_lower(&mut lower, &b, &c.transpose());
+            let full = p - b * c;
+            for j in 0..4 {
+                for i in 0..4 {
+                    let want = if i >= j { full[(i, j)] } else { p[(i, j)] };
+                    prop_assert!((lower[(i, j)] - want).abs() < tol);
+                }
+            }
             let g = congruence(&a, &p);
             prop_assert!((g - a * p * a.transpose()).amax() < tol);
             prop_assert_eq!(g, g.transpose());

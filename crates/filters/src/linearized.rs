@@ -78,9 +78,7 @@ where
             *col = P.data.0[i];
         }
         let S = Matrix::<M, M>::from_fn(|r, c| PHt[(idx[r], c)]) + R;
-        return Ok(
-            MeasurementPrediction::new(z_pred, S, PHt, Some(H), R, form)?.with_selection(idx),
-        );
+        return MeasurementPrediction::new(z_pred, S, PHt, Some(H), R, form);
     }
     // A non-finite `H` reaches the diagonal of `S` (through `H P Hᵀ`) and fails its
     // factorisation; only then is `H` examined, to name it as the cause.

@@ -2,7 +2,7 @@
 
 use argus_core_math::{
     Gaussian, Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector,
-    joseph_update_from_cross, kernels, unit_ball_volume,
+    joseph_update_from_innovation, kernels, unit_ball_volume,
 };
 use argus_sensors::MeasurementModel;
 
@@ -32,9 +32,6 @@ pub struct MeasurementPrediction<const N: usize, const M: usize> {
     noise: Matrix<M, M>,
     form: CovarianceForm,
     log_det_s: f64,
-    /// The indices `H` selects, when it is a selection matrix (set by the filters,
-    /// which check them against `N`).
-    selection: Option<[usize; M]>,
 }
 
 /// The innovation of one plot against a [`MeasurementPrediction`].
@@ -54,7 +51,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     /// The gain `K = P_xz S⁻¹` is computed here. With a Jacobian and the Joseph form,
     /// `P_xz` must be `P⁻ Hᵀ` of the covariance later passed to [`Self::update`] /
     /// [`Self::posterior_cov`]: the Joseph update reuses it
-    /// ([`argus_core_math::joseph_update_from_cross`]).
+    /// ([`argus_core_math::joseph_update_from_innovation`]).
     ///
     /// # Errors
     /// [`FilterError::Math`] when a value is non-finite or `S` is not positive definite.
@@ -86,16 +83,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
             noise,
             form,
             log_det_s,
-            selection: None,
         })
-    }
-
-    /// Marks the Jacobian as the selection matrix of `idx` (every index `< N`, checked by
-    /// the caller): the Joseph update then gathers columns instead of multiplying by `H`.
-    #[inline]
-    pub(crate) fn with_selection(mut self, idx: [usize; M]) -> Self {
-        self.selection = Some(idx);
-        self
     }
 
     /// The predicted measurement `ẑ`.
@@ -211,44 +199,19 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     #[must_use]
     #[inline]
     pub fn posterior_cov(&self, prior_cov: &Matrix<N, N>) -> Matrix<N, N> {
-        match (self.form, self.jacobian.as_ref(), self.selection) {
-            (CovarianceForm::Joseph, Some(_), Some(idx)) => {
-                joseph_update_selection(prior_cov, &self.gain, &idx, &self.cross, &self.noise)
-            }
-            (CovarianceForm::Joseph, Some(h), None) => {
-                joseph_update_from_cross(prior_cov, &self.gain, h, &self.cross, &self.noise)
+        match (self.form, self.jacobian.as_ref()) {
+            (CovarianceForm::Joseph, Some(_)) => {
+                // The Joseph form from `P_xz` and `S` (no `H` product needed).
+                joseph_update_from_innovation(prior_cov, &self.gain, &self.cross, &self.s)
             }
             _ => {
                 // `P − K S Kᵀ` as `P − K P_xzᵀ` (`K S = P_xz` for the gain formed in `new`),
-                // lower triangle mirrored.
-                let mut out = prior_cov - kernels::mul_transpose(&self.gain, &self.cross);
+                // lower triangle computed and mirrored.
+                let mut out = *prior_cov;
+                kernels::sub_mul_transpose_lower(&mut out, &self.gain, &self.cross);
                 kernels::mirror_lower(&mut out);
                 out
             }
         }
     }
-}
-
-/// The Joseph update `(I − K H) P (I − K H)ᵀ + K R Kᵀ` for a selection matrix `H` (rows of
-/// the identity at `idx`, every index `< N`): as
-/// [`argus_core_math::joseph_update_from_cross`], with `B Hᵀ` gathered as columns `idx` of
-/// `B = P − K (P Hᵀ)ᵀ` instead of multiplied.
-#[allow(non_snake_case)]
-#[inline]
-fn joseph_update_selection<const N: usize, const M: usize>(
-    P: &Matrix<N, N>,
-    K: &Matrix<N, M>,
-    idx: &[usize; M],
-    PHt: &Matrix<N, M>,
-    R: &Matrix<M, M>,
-) -> Matrix<N, N> {
-    let B = P - kernels::mul_transpose(K, PHt);
-    let mut BHt = Matrix::<N, M>::zeros();
-    for (col, &i) in BHt.data.0.iter_mut().zip(idx) {
-        *col = B.data.0[i];
-    }
-    // `B − (B Hᵀ) Kᵀ + K R Kᵀ = B − (B Hᵀ − K R) Kᵀ`: one product with `Kᵀ`.
-    let mut out = B - kernels::mul_transpose(&(BHt - kernels::mul(K, R)), K);
-    kernels::mirror_lower(&mut out);
-    out
 }

@@ -45,19 +45,25 @@ pub(crate) fn block_congruence_with<const N: usize, const B: usize>(
     p: &Matrix<N, N>,
     blk: impl Fn(&Matrix<B, B>) -> Matrix<B, B>,
 ) -> Matrix<N, N> {
+    // Column-major stack arrays: `p[c][r]` is entry (r, c).
+    let src = &p.data.0;
     let mut out = *p;
     let blocks = N / B;
     for j in 0..blocks {
-        let diag: Matrix<B, B> = p.fixed_view::<B, B>(j * B, j * B).into_owned();
-        let mut d = blk(&diag);
-        argus_core_math::kernels::mirror_lower(&mut d);
-        out.fixed_view_mut::<B, B>(j * B, j * B).copy_from(&d);
-        for i in j + 1..blocks {
-            let off: Matrix<B, B> = p.fixed_view::<B, B>(i * B, j * B).into_owned();
-            let m = blk(&off);
-            out.fixed_view_mut::<B, B>(i * B, j * B).copy_from(&m);
-            out.fixed_view_mut::<B, B>(j * B, i * B)
-                .copy_from(&m.transpose());
+        for i in j..blocks {
+            // Block (i, j): rows i·B.., columns j·B...
+            let m = Matrix::<B, B>::from_fn(|r, c| src[j * B + c][i * B + r]);
+            let mut r = blk(&m);
+            if i == j {
+                argus_core_math::kernels::mirror_lower(&mut r);
+            }
+            let o = &mut out.data.0;
+            for c in 0..B {
+                for rr in 0..B {
+                    o[j * B + c][i * B + rr] = r[(rr, c)];
+                    o[i * B + rr][j * B + c] = r[(rr, c)];
+                }
+            }
         }
     }
     out
