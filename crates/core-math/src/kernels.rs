@@ -76,10 +76,6 @@ pub fn mirror_lower<const N: usize>(m: &mut Matrix<N, N>) {
 /// strict upper triangle is not touched. For updates of a symmetric matrix by terms whose
 /// sum is symmetric: apply each, then [`mirror_lower`].
 #[inline]
-#[expect(
-    clippy::needless_range_loop,
-    reason = "row i of column j is updated from row i of A's columns and row j of B's"
-)]
 pub fn sub_mul_transpose_lower<const N: usize, const K: usize>(
     m: &mut Matrix<N, N>,
     a: &Matrix<N, K>,
