@@ -4,6 +4,7 @@ use argus_core_math::Matrix;
 
 /// Repeats the `B × B` block `b` along the diagonal of an `N × N` matrix
 /// (`N / B` copies; the callers use `N` a multiple of `B`).
+#[inline]
 pub(crate) fn block_diag<const N: usize, const B: usize>(b: &Matrix<B, B>) -> Matrix<N, N> {
     let mut m = Matrix::<N, N>::zeros();
     let mut k = 0;
@@ -79,6 +80,7 @@ pub(crate) fn block_product<const B: usize>(a: &Matrix<B, B>, m: &Matrix<B, B>) 
 macro_rules! impl_block_model {
     ($name:ident, $n:literal, $b:literal) => {
         impl $crate::MotionModel<$n> for $name {
+            #[inline]
             fn propagate(
                 &self,
                 x: &argus_core_math::Vector<$n>,
@@ -105,6 +107,7 @@ macro_rules! impl_block_model {
                 $crate::LinearMotionModel::<$n>::transition(self, dt)
             }
 
+            #[inline]
             fn process_noise(
                 &self,
                 _x: &argus_core_math::Vector<$n>,

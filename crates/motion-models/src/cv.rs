@@ -87,6 +87,7 @@ impl CvNoise {
     /// The `2 × 2` per-axis covariance over `dt` (see the variants for the formulas).
     /// Not validated here: the model constructors reject negative or non-finite intensities.
     #[must_use]
+    #[inline]
     pub fn axis_covariance(&self, dt: f64) -> Matrix<2, 2> {
         let t2 = dt * dt;
         let t3 = t2 * dt;
@@ -105,6 +106,7 @@ impl CvNoise {
 
 /// The per-axis CV transition `[[1, T], [0, 1]]`.
 #[must_use]
+#[inline]
 pub fn cv_axis_transition(dt: f64) -> Matrix<2, 2> {
     Matrix::<2, 2>::new(1.0, dt, 0.0, 1.0)
 }
