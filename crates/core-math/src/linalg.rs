@@ -63,25 +63,59 @@ pub(crate) fn asymmetry<const N: usize>(a: &Matrix<N, N>) -> f64 {
 
 /// Whether the symmetric matrix `a` is positive definite, reading its lower triangle.
 ///
-/// The test runs the `LDLᵀ` factorisation (no square roots, nothing kept) and checks that
-/// every pivot `dⱼ` is positive and finite, which holds exactly when `a` is positive
-/// definite (Golub & Van Loan 2013, §4.2). A NaN or ±∞ anywhere in the lower triangle
-/// reaches a later pivot, so the test also fails on non-finite input. It is the cheap
-/// check for a covariance that is stored but not solved with (a filter's output);
-/// use [`SpdFactor`] when the factor is needed.
+/// Positive definite exactly when every leading principal minor is positive (Sylvester's
+/// criterion), equivalently every pivot `dⱼ` of `A = L D Lᵀ` (Golub & Van Loan 2013,
+/// §4.2). The fast path computes the minors by Bareiss's fraction-free elimination
+/// (Bareiss 1968): each step multiplies by the new pivot and by the reciprocal of the
+/// previous one, which is ready a step ahead, so no division waits on the step before it
+/// (the pivot chain of `LDLᵀ` costs one division latency per row). The minors scale as
+/// `scale^k`; when one is not a positive finite number (a non-definite matrix, a NaN or
+/// ±∞ in the lower triangle, or an overflow or underflow of the minors), the `LDLᵀ`
+/// pivots decide. It is the cheap check for a covariance that is stored but not solved
+/// with (a filter's output); use [`SpdFactor`] when the factor is needed.
 #[must_use]
+#[inline]
+pub fn is_positive_definite<const N: usize>(a: &Matrix<N, N>) -> bool {
+    bareiss_minors_positive(a) || ldl_pivots_positive(a)
+}
+
+/// The fast path of [`is_positive_definite`]: the leading principal minors by Bareiss's
+/// elimination on a copy of the lower triangle (`m[j][i]` is entry (i, j)); `true` when
+/// all are positive and finite. No early exit: fixed trip counts unroll for small `N`.
 #[inline]
 #[expect(
     clippy::needless_range_loop,
     reason = "the elimination reads column j while it updates column c of the same array"
 )]
-pub fn is_positive_definite<const N: usize>(a: &Matrix<N, N>) -> bool {
-    // Symmetric Gaussian elimination on a copy of the lower triangle (column-major
-    // storage: `m[j][i]` is entry (i, j)); the pivots are the `dⱼ` of `LDLᵀ`.
-    // No early exit: fixed trip counts let the compiler unroll the elimination for the
-    // small `N` of a filter; after a bad pivot the rest may be NaN, which changes nothing.
-    // The pivots pass when the smallest is positive and their sum is finite (a NaN or
-    // ±∞ pivot makes the sum non-finite): two float operations per pivot, one test.
+fn bareiss_minors_positive<const N: usize>(a: &Matrix<N, N>) -> bool {
+    let mut m = a.data.0;
+    let mut smallest = f64::INFINITY;
+    let mut sum = 0.0;
+    // After step j, m[c][r] (c, r > j) is the minor of rows 0..=j, r and columns 0..=j, c
+    // (Bareiss: (d_j m − m_jc m_jr) / d_{j−1}, with d_{−1} = 1).
+    let mut inv_prev = 1.0;
+    for j in 0..N {
+        let d = m[j][j];
+        smallest = smallest.min(d);
+        sum += d;
+        for c in j + 1..N {
+            for r in c..N {
+                m[c][r] = (d * m[c][r] - m[j][c] * m[j][r]) * inv_prev;
+            }
+        }
+        inv_prev = 1.0 / d;
+    }
+    // A NaN or ±∞ minor makes the sum non-finite.
+    smallest > 0.0 && sum.is_finite()
+}
+
+/// The exact path of [`is_positive_definite`]: every `LDLᵀ` pivot positive and finite.
+#[inline(never)]
+#[expect(
+    clippy::needless_range_loop,
+    reason = "the elimination reads column j while it updates column c of the same array"
+)]
+fn ldl_pivots_positive<const N: usize>(a: &Matrix<N, N>) -> bool {
     let mut m = a.data.0;
     let mut smallest = f64::INFINITY;
     let mut sum = 0.0;
@@ -100,19 +134,24 @@ pub fn is_positive_definite<const N: usize>(a: &Matrix<N, N>) -> bool {
     smallest > 0.0 && sum.is_finite()
 }
 
-/// The Cholesky factor `A = L Lᵀ` of a symmetric positive-definite matrix, with
-/// the solves and determinants built on it.
+/// The factorisation `A = L D Lᵀ` (`L` unit lower triangular, `D` diagonal and positive) of
+/// a symmetric positive-definite matrix, with the solves and determinants built on it.
 ///
-/// Construction checks finiteness and symmetry, then positive definiteness
-/// (the factorisation itself fails otherwise). The factor is computed here on the
-/// stack arrays (the Cholesky–Banachiewicz recursion, Golub & Van Loan 2013, §4.2.5)
-/// with the reciprocals of its diagonal kept, so the solves multiply instead of dividing.
+/// Construction checks finiteness and symmetry, then positive definiteness (a pivot that
+/// is not positive and finite fails it). The factor is computed here on the stack arrays
+/// (Golub & Van Loan 2013, §4.1.2) with the reciprocals of the pivots kept, so the solves
+/// multiply instead of dividing; no square roots are taken (the Cholesky factor
+/// `L D^{1/2}` is formed only when [`SpdFactor::l`] asks for it), which keeps one
+/// division, and no square root, per row on the factorisation's critical path.
 #[derive(Debug, Clone, Copy)]
 pub struct SpdFactor<const N: usize> {
-    /// `L`, column-major (`l[j][i]` is `L(i, j)`); the strict upper triangle is zero.
+    /// The strictly lower part of the unit `L`, column-major (`l[j][i]` is `L(i, j)`);
+    /// the diagonal and the upper triangle are zero.
     l: [[f64; N]; N],
-    /// `1 / L(i, i)`.
-    inv_diag: [f64; N],
+    /// The pivots `D`.
+    d: [f64; N],
+    /// `1 / D`.
+    inv_d: [f64; N],
 }
 
 impl<const N: usize> SpdFactor<N> {
@@ -141,39 +180,42 @@ impl<const N: usize> SpdFactor<N> {
     #[inline]
     #[expect(
         clippy::needless_range_loop,
-        reason = "the recursion reads row i and row j of L while it writes L(i, j)"
+        reason = "the recursion reads rows i and j of L while it writes L(i, j)"
     )]
     pub fn new_symmetric(a: &Matrix<N, N>, what: &'static str) -> Result<Self, MathError> {
-        // Every entry of the lower triangle reaches a pivot `d_i` (as `L(i, j)²`), so a NaN or
-        // ±∞ anywhere in it makes some pivot fail the test: one check covers non-finite
-        // input and indefiniteness; only then is `a` examined to name the cause.
+        // Every entry of the lower triangle reaches a pivot `d_i` (through `L(i, j)`), so a
+        // NaN or ±∞ anywhere in it makes some pivot fail the test: one check covers
+        // non-finite input and indefiniteness; only then is `a` examined to name the cause.
         let a = &a.data.0;
         let mut l = [[0.0; N]; N];
-        let mut inv_diag = [0.0; N];
+        // `w[j][i] = L(i, j) d_j`, the unscaled column, reused by later columns.
+        let mut w = [[0.0; N]; N];
+        let mut d = [0.0; N];
+        let mut inv_d = [0.0; N];
         let mut smallest = f64::INFINITY;
         let mut sum = 0.0;
         for j in 0..N {
-            let mut d = a[j][j];
+            let mut dj = a[j][j];
             for k in 0..j {
-                d -= l[k][j] * l[k][j];
+                dj -= l[k][j] * w[k][j];
             }
             // As in `is_positive_definite`: the smallest pivot positive, their sum finite.
-            smallest = smallest.min(d);
-            sum += d;
-            let ljj = d.sqrt();
-            let inv = 1.0 / ljj;
-            l[j][j] = ljj;
-            inv_diag[j] = inv;
+            smallest = smallest.min(dj);
+            sum += dj;
+            let inv = 1.0 / dj;
+            d[j] = dj;
+            inv_d[j] = inv;
             for i in j + 1..N {
                 let mut s = a[j][i];
                 for k in 0..j {
-                    s -= l[k][i] * l[k][j];
+                    s -= l[k][i] * w[k][j];
                 }
+                w[j][i] = s;
                 l[j][i] = s * inv;
             }
         }
         if smallest > 0.0 && sum.is_finite() {
-            Ok(Self { l, inv_diag })
+            Ok(Self { l, d, inv_d })
         } else {
             let full = Matrix::<N, N>::from_data(nalgebra::ArrayStorage(*a));
             Err(check_finite_matrix(&full, what)
@@ -182,10 +224,17 @@ impl<const N: usize> SpdFactor<N> {
         }
     }
 
-    /// The lower-triangular factor `L`.
+    /// The lower-triangular Cholesky factor `L D^{1/2}` (`A = (L D^{1/2})(L D^{1/2})ᵀ`).
     #[must_use]
     pub fn l(&self) -> Matrix<N, N> {
-        Matrix::<N, N>::from_data(nalgebra::ArrayStorage(self.l))
+        Matrix::<N, N>::from_fn(|i, j| {
+            let root = self.d[j].sqrt();
+            match i.cmp(&j) {
+                std::cmp::Ordering::Equal => root,
+                std::cmp::Ordering::Greater => self.l[j][i] * root,
+                std::cmp::Ordering::Less => 0.0,
+            }
+        })
     }
 
     /// Solves `A x = b`.
@@ -199,8 +248,8 @@ impl<const N: usize> SpdFactor<N> {
     #[must_use]
     #[inline]
     pub fn solve_matrix<const C: usize>(&self, b: &Matrix<N, C>) -> Matrix<N, C> {
-        // Forward then back substitution on the stack arrays (column-major: `l[j][i]`
-        // is L(i, j)); fixed trip counts that the compiler unrolls for small `N`.
+        // `L y = b` forward, `y /= D`, `Lᵀ x = y` backward, on the stack arrays
+        // (column-major: `l[j][i]` is L(i, j)); fixed trip counts unroll for small `N`.
         let l = &self.l;
         let mut x = *b;
         for col in &mut x.data.0 {
@@ -209,43 +258,47 @@ impl<const N: usize> SpdFactor<N> {
                 for k in 0..i {
                     s -= l[k][i] * col[k];
                 }
-                col[i] = s * self.inv_diag[i];
+                col[i] = s;
+            }
+            for i in 0..N {
+                col[i] *= self.inv_d[i];
             }
             for i in (0..N).rev() {
                 let mut s = col[i];
                 for k in i + 1..N {
                     s -= l[i][k] * col[k];
                 }
-                col[i] = s * self.inv_diag[i];
+                col[i] = s;
             }
         }
         x
     }
 
     /// Solves `X A = B` for `X` (a right division, `X = B A⁻¹`), as a filter's gain
-    /// `K = P Hᵀ S⁻¹`: column operations on `B` (`Y Lᵀ = B` forward, then `X L = Y`
-    /// backward), so no transposes are formed.
+    /// `K = P Hᵀ S⁻¹`: column operations on `B` (`V Lᵀ = B` forward, `Y = V D⁻¹`, then
+    /// `X L = Y` backward), so no transposes are formed.
     #[must_use]
     #[inline]
     pub fn solve_right<const R: usize>(&self, b: &Matrix<R, N>) -> Matrix<R, N> {
         let l = &self.l;
         let mut x = b.data.0;
-        // Y Lᵀ = B: column i of Y is (B_i − Σ_{k<i} L(i, k) Y_k) / L(i, i).
+        // V Lᵀ = B: column i of V is B_i − Σ_{k<i} L(i, k) V_k; then Y_i = V_i / d_i.
         for i in 0..N {
             let mut col = x[i];
-            for (k, yk) in x.iter().enumerate().take(i) {
+            for (k, vk) in x.iter().enumerate().take(i) {
                 let lik = l[k][i];
-                for (c, &y) in col.iter_mut().zip(yk) {
-                    *c -= lik * y;
+                for (c, &v) in col.iter_mut().zip(vk) {
+                    *c -= lik * v;
                 }
-            }
-            let inv = self.inv_diag[i];
-            for c in &mut col {
-                *c *= inv;
             }
             x[i] = col;
         }
-        // X L = Y: column i of X is (Y_i − Σ_{k>i} L(k, i) X_k) / L(i, i).
+        for (col, &inv) in x.iter_mut().zip(&self.inv_d) {
+            for c in col {
+                *c *= inv;
+            }
+        }
+        // X L = Y: column i of X is Y_i − Σ_{k>i} L(k, i) X_k.
         for i in (0..N).rev() {
             let mut col = x[i];
             for (k, xk) in x.iter().enumerate().skip(i + 1) {
@@ -253,10 +306,6 @@ impl<const N: usize> SpdFactor<N> {
                 for (c, &v) in col.iter_mut().zip(xk) {
                     *c -= lki * v;
                 }
-            }
-            let inv = self.inv_diag[i];
-            for c in &mut col {
-                *c *= inv;
             }
             x[i] = col;
         }
@@ -269,25 +318,24 @@ impl<const N: usize> SpdFactor<N> {
         symmetrize(&self.solve_matrix(&Matrix::<N, N>::identity()))
     }
 
-    /// `ln |A|`, computed as `2 Σ ln Lᵢᵢ` (no overflow or underflow of the determinant).
+    /// `ln |A| = Σ ln dᵢ` (no overflow or underflow of the determinant).
     #[must_use]
     #[inline]
     pub fn log_det(&self) -> f64 {
         // One logarithm of the product of the pivots when that product is a normal
         // float; otherwise (under- or overflow) the sum of logarithms.
-        let product: f64 = (0..N).map(|i| self.l[i][i]).product();
+        let product: f64 = self.d.iter().product();
         if product.is_normal() {
-            2.0 * product.ln()
+            product.ln()
         } else {
-            2.0 * (0..N).map(|i| self.l[i][i].ln()).sum::<f64>()
+            self.d.iter().map(|d| d.ln()).sum::<f64>()
         }
     }
 
-    /// The squared Mahalanobis distance `vᵀ A⁻¹ v`, as `‖L⁻¹ v‖²`.
+    /// The squared Mahalanobis distance `vᵀ A⁻¹ v = Σ wᵢ² / dᵢ` with `L w = v`.
     #[must_use]
     #[inline]
     pub fn mahalanobis_sq(&self, v: &Vector<N>) -> f64 {
-        // `‖L⁻¹ v‖²` by forward substitution (see `solve_matrix`).
         let l = &self.l;
         let mut w = v.data.0[0];
         let mut sum = 0.0;
@@ -296,8 +344,8 @@ impl<const N: usize> SpdFactor<N> {
             for k in 0..i {
                 s -= l[k][i] * w[k];
             }
-            w[i] = s * self.inv_diag[i];
-            sum += w[i] * w[i];
+            w[i] = s;
+            sum += s * s * self.inv_d[i];
         }
         sum
     }
@@ -491,7 +539,37 @@ mod tests {
         }
     }
 
+    #[test]
+    fn positive_definite_test_survives_extreme_scales() {
+        // The fast path's minors overflow (1e200⁴) or underflow (1e-200⁴); the LDLᵀ
+        // pivots decide, and both matrices are definite.
+        let big = Matrix::<4, 4>::identity() * 1e200;
+        assert!(!bareiss_minors_positive(&big));
+        assert!(is_positive_definite(&big));
+        let tiny = Matrix::<4, 4>::identity() * 1e-200;
+        assert!(!bareiss_minors_positive(&tiny));
+        assert!(is_positive_definite(&tiny));
+        assert!(!is_positive_definite(
+            &(Matrix::<4, 4>::identity() * -1e200)
+        ));
+    }
+
     proptest! {
+        #[test]
+        fn bareiss_minors_are_the_leading_principal_minors(seed in proptest::array::uniform16(-3.0f64..3.0)) {
+            // The fast path decides exactly as the determinants of the leading blocks do
+            // (away from zero), and as the LDLᵀ pivots.
+            let g = Matrix::<4, 4>::from_row_slice(&seed);
+            let m = symmetrize(&(g + g.transpose()));
+            let minors: Vec<f64> = (1..=4).map(|k| m.view((0, 0), (k, k)).determinant()).collect();
+            prop_assume!(minors.iter().all(|d| d.abs() > 1e-6));
+            let all_positive = minors.iter().all(|&d| d > 0.0);
+            prop_assert_eq!(bareiss_minors_positive(&m), all_positive);
+            prop_assert_eq!(ldl_pivots_positive(&m), all_positive);
+            let spd = m * m.transpose() + Matrix::<4, 4>::identity();
+            prop_assert!(bareiss_minors_positive(&symmetrize(&spd)));
+        }
+
         #[test]
         fn positive_definite_test_agrees_with_cholesky(seed in proptest::array::uniform9(-3.0f64..3.0), shift in -4.0f64..1.0) {
             // A A^T + shift I is definite exactly when shift exceeds −λ_min(A Aᵀ); the
@@ -521,6 +599,10 @@ mod tests {
             let ours = f.solve_matrix(&rhs);
             let theirs = Cholesky::new(symmetrize(&a)).unwrap().solve(&rhs);
             prop_assert!((ours - theirs).amax() < 1e-10 * (1.0 + theirs.amax()));
+            // The Cholesky factor it reports reproduces A, and agrees with nalgebra's.
+            let ll = f.l();
+            prop_assert!((ll * ll.transpose() - a).amax() < 1e-9 * (1.0 + a.amax()));
+            prop_assert!((ll - Cholesky::new(symmetrize(&a)).unwrap().l()).amax() < 1e-9 * (1.0 + a.amax()));
             // The right division X A = B against the transposed left solve.
             let right = f.solve_right(&rhs.transpose());
             prop_assert!((right - theirs.transpose()).amax() < 1e-10 * (1.0 + theirs.amax()));
