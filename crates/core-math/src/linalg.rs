@@ -83,10 +83,6 @@ pub fn is_positive_definite<const N: usize>(a: &Matrix<N, N>) -> bool {
 /// elimination on a copy of the lower triangle (`m[j][i]` is entry (i, j)); `true` when
 /// all are positive and finite. No early exit: fixed trip counts unroll for small `N`.
 #[inline]
-#[expect(
-    clippy::needless_range_loop,
-    reason = "the elimination reads column j while it updates column c of the same array"
-)]
 fn bareiss_minors_positive<const N: usize>(a: &Matrix<N, N>) -> bool {
     let mut m = a.data.0;
     let mut smallest = f64::INFINITY;
@@ -178,10 +174,6 @@ impl<const N: usize> SpdFactor<N> {
     /// # Errors
     /// [`MathError::NonFinite`] or [`MathError::NotPositiveDefinite`], naming `what`.
     #[inline]
-    #[expect(
-        clippy::needless_range_loop,
-        reason = "the recursion reads rows i and j of L while it writes L(i, j)"
-    )]
     pub fn new_symmetric(a: &Matrix<N, N>, what: &'static str) -> Result<Self, MathError> {
         // Every entry of the lower triangle reaches a pivot `d_i` (through `L(i, j)`), so a
         // NaN or ±∞ anywhere in it makes some pivot fail the test: one check covers
@@ -260,8 +252,8 @@ impl<const N: usize> SpdFactor<N> {
                 }
                 col[i] = s;
             }
-            for i in 0..N {
-                col[i] *= self.inv_d[i];
+            for (c, &inv) in col.iter_mut().zip(&self.inv_d) {
+                *c *= inv;
             }
             for i in (0..N).rev() {
                 let mut s = col[i];
