@@ -4,7 +4,7 @@ use argus_core_math::{Gaussian, check_finite_matrix, check_finite_vector};
 use argus_motion_models::MotionModel;
 use argus_sensors::MeasurementModel;
 
-use crate::linearized::{checked_gaussian, covariance_predict, first_order_measurement};
+use crate::linearized::{checked_gaussian, first_order_measurement, linearized_predict};
 use crate::second_order::second_order_terms;
 use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction, check_dt};
 
@@ -58,11 +58,7 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ekf<Mo> {
     /// non-finite value or a `P⁻` that is not positive definite.
     #[allow(non_snake_case)]
     fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
-        check_dt(dt)?;
-        let x = prior.mean();
-        let Q = self.model.process_noise(x, dt);
-        let (mean, FPFt) = self.model.propagate_with_covariance(x, prior.cov(), dt);
-        covariance_predict(mean, &FPFt, &Q)
+        linearized_predict(&self.model, prior, dt)
     }
 
     /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.

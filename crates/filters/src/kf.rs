@@ -4,8 +4,8 @@ use argus_core_math::Gaussian;
 use argus_motion_models::LinearMotionModel;
 use argus_sensors::MeasurementModel;
 
-use crate::linearized::{covariance_predict, first_order_measurement};
-use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction, check_dt};
+use crate::linearized::{first_order_measurement, linearized_predict};
+use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction};
 
 /// The Kalman filter on a linear motion model.
 ///
@@ -98,11 +98,7 @@ impl<const N: usize, Mo: LinearMotionModel<N>> GaussianFilter<N> for Kf<Mo> {
     /// not positive definite.
     #[allow(non_snake_case)]
     fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
-        check_dt(dt)?;
-        let x = prior.mean();
-        let Q = self.model.process_noise(x, dt);
-        let (mean, FPFt) = self.model.propagate_with_covariance(x, prior.cov(), dt);
-        covariance_predict(mean, &FPFt, &Q)
+        linearized_predict(&self.model, prior, dt)
     }
 
     /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.

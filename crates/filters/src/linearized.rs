@@ -3,7 +3,9 @@
 use argus_core_math::{Gaussian, MathError, Matrix, Vector, check_finite_matrix, kernels};
 use argus_sensors::MeasurementModel;
 
-use crate::{CovarianceForm, FilterError, MeasurementPrediction};
+use argus_motion_models::MotionModel;
+
+use crate::{CovarianceForm, FilterError, MeasurementPrediction, check_dt};
 
 /// Builds an estimate from a filter stage's mean and covariance, naming the stage
 /// in the error (`what_mean`, `what_cov`) when a value is non-finite or the
@@ -30,23 +32,21 @@ pub(crate) fn checked_gaussian<const N: usize>(
     })
 }
 
-/// The linearised prediction `x⁻ = f`, `P⁻ = F P Fᵀ + Q` from a propagated mean,
-/// the propagated covariance `F P Fᵀ` (the motion model's
-/// [`argus_motion_models::MotionModel::propagate_covariance`], which exploits a
-/// structured `F`) and the process noise `Q`. A non-finite `F` shows as a non-finite
-/// predicted covariance.
-#[allow(non_snake_case)]
+/// The linearised prediction `x⁻ = f(x, dt)`, `P⁻ = F P Fᵀ + Q` of the KF and the EKF,
+/// from the motion model's [`MotionModel::predict_moments`] (which exploits a structured
+/// `F` and `Q`). A non-finite `F` or `Q` shows as a non-finite predicted covariance; only
+/// then is `Q` examined, to name it as the cause.
 #[inline]
-pub(crate) fn covariance_predict<const N: usize>(
-    mean: Vector<N>,
-    FPFt: &Matrix<N, N>,
-    Q: &Matrix<N, N>,
+pub(crate) fn linearized_predict<const N: usize, Mo: MotionModel<N>>(
+    model: &Mo,
+    prior: &Gaussian<N>,
+    dt: f64,
 ) -> Result<Gaussian<N>, FilterError> {
-    let cov = FPFt + Q;
-    // A non-finite `Q` makes the predicted covariance fail its test; only then is `Q`
-    // examined, to name it as the cause.
+    check_dt(dt)?;
+    let x = prior.mean();
+    let (mean, cov) = model.predict_moments(x, prior.cov(), dt);
     checked_gaussian(mean, cov, "predicted mean", "predicted covariance").map_err(|e| {
-        check_finite_matrix(Q, "process noise Q")
+        check_finite_matrix(&model.process_noise(x, dt), "process noise Q")
             .err()
             .map_or(e, FilterError::Math)
     })

@@ -36,7 +36,8 @@ pub(crate) fn block_mul_vec<const N: usize, const B: usize>(
 }
 
 /// `F P Fᵀ` for `F = diag(A, A, …)` (`N / B` blocks): block `(i, j)` of the result is
-/// `A P_ij Aᵀ`, computed by `blk` (the model's closed form, or the two products). Only the
+/// `A P_ij Aᵀ`, computed by `blk` (the model's closed form, or the two products), plus the
+/// per-axis `noise` on the diagonal blocks when given (`F P Fᵀ + Q`). Only the
 /// blocks on and below the diagonal are computed; diagonal blocks are mirrored from their
 /// lower triangle and the upper blocks are the transposes of the lower ones, so the result
 /// is exactly symmetric. Components past the last whole block (none for the models here)
@@ -45,6 +46,7 @@ pub(crate) fn block_mul_vec<const N: usize, const B: usize>(
 pub(crate) fn block_congruence_with<const N: usize, const B: usize>(
     p: &Matrix<N, N>,
     blk: impl Fn(&Matrix<B, B>) -> Matrix<B, B>,
+    noise: Option<&Matrix<B, B>>,
 ) -> Matrix<N, N> {
     // Column-major stack arrays: `p[c][r]` is entry (r, c).
     let src = &p.data.0;
@@ -56,6 +58,9 @@ pub(crate) fn block_congruence_with<const N: usize, const B: usize>(
             let m = Matrix::<B, B>::from_fn(|r, c| src[j * B + c][i * B + r]);
             let mut r = blk(&m);
             if i == j {
+                if let Some(q) = noise {
+                    r += q;
+                }
                 argus_core_math::kernels::mirror_lower(&mut r);
             }
             let o = &mut out.data.0;
@@ -96,7 +101,29 @@ macro_rules! impl_block_model {
                 p: &argus_core_math::Matrix<$n, $n>,
                 dt: f64,
             ) -> argus_core_math::Matrix<$n, $n> {
-                $crate::block::block_congruence_with::<$n, $b>(p, |m| Self::axis_congruence(dt, m))
+                $crate::block::block_congruence_with::<$n, $b>(
+                    p,
+                    |m| Self::axis_congruence(dt, m),
+                    None,
+                )
+            }
+
+            #[inline]
+            fn predict_moments(
+                &self,
+                x: &argus_core_math::Vector<$n>,
+                p: &argus_core_math::Matrix<$n, $n>,
+                dt: f64,
+            ) -> (argus_core_math::Vector<$n>, argus_core_math::Matrix<$n, $n>) {
+                let q = self.axis_noise(dt);
+                (
+                    $crate::MotionModel::<$n>::propagate(self, x, dt),
+                    $crate::block::block_congruence_with::<$n, $b>(
+                        p,
+                        |m| Self::axis_congruence(dt, m),
+                        Some(&q),
+                    ),
+                )
             }
 
             fn jacobian(
@@ -167,6 +194,11 @@ mod tests {
         assert!((fast - full).amax() <= 1e-12 * full.amax());
         assert_eq!(fast, fast.transpose());
         assert!((model.propagate(&x, dt) - f * x).amax() <= 1e-12 * (f * x).amax());
+        let q = model.process_noise(&x, dt);
+        let (mean, moments) = model.predict_moments(&x, &p, dt);
+        assert!((moments - (full + q)).amax() <= 1e-12 * (full + q).amax());
+        assert_eq!(moments, moments.transpose());
+        assert_eq!(mean, model.propagate(&x, dt));
     }
 
     proptest::proptest! {

@@ -151,10 +151,12 @@ macro_rules! ca_model {
                 self.noise
             }
 
+            #[inline]
             fn axis_transition(dt: f64) -> Matrix<3, 3> {
                 ca_axis_transition(dt)
             }
 
+            #[inline]
             fn axis_noise(&self, dt: f64) -> Matrix<3, 3> {
                 self.noise.axis_covariance(dt)
             }

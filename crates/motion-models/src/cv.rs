@@ -159,10 +159,12 @@ macro_rules! cv_model {
                 self.noise
             }
 
+            #[inline]
             fn axis_transition(dt: f64) -> Matrix<2, 2> {
                 cv_axis_transition(dt)
             }
 
+            #[inline]
             fn axis_noise(&self, dt: f64) -> Matrix<2, 2> {
                 self.noise.axis_covariance(dt)
             }

@@ -105,6 +105,21 @@ pub trait MotionModel<const N: usize> {
         (self.propagate(x, dt), self.propagate_covariance(x, p, dt))
     }
 
+    /// The moments of the linearised prediction together: `(f(x, dt), F P Fᵀ + Q(x, dt))`.
+    ///
+    /// The default adds [`MotionModel::process_noise`] to
+    /// [`MotionModel::propagate_with_covariance`]; the block-diagonal CV and CA models add
+    /// their per-axis noise block by block instead of forming the full `Q`.
+    fn predict_moments(
+        &self,
+        x: &Vector<N>,
+        p: &Matrix<N, N>,
+        dt: f64,
+    ) -> (Vector<N>, Matrix<N, N>) {
+        let (mean, fpf) = self.propagate_with_covariance(x, p, dt);
+        (mean, fpf + self.process_noise(x, dt))
+    }
+
     /// The Hessians `∂²fᵢ/∂x²`, one per state component, for second-order filters.
     /// `None` when the model does not provide them (a second-order filter then reports an error).
     fn hessians(&self, _x: &Vector<N>, _dt: f64) -> Option<[Matrix<N, N>; N]> {

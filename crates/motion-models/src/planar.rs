@@ -71,6 +71,18 @@ impl MotionModel<4> for PlanarModel {
         }
     }
 
+    fn predict_moments(
+        &self,
+        x: &Vector<4>,
+        p: &Matrix<4, 4>,
+        dt: f64,
+    ) -> (Vector<4>, Matrix<4, 4>) {
+        match self {
+            Self::Cv(m) => m.predict_moments(x, p, dt),
+            Self::Ct(m) => m.predict_moments(x, p, dt),
+        }
+    }
+
     fn hessians(&self, x: &Vector<4>, dt: f64) -> Option<[Matrix<4, 4>; 4]> {
         match self {
             Self::Cv(m) => m.hessians(x, dt),
@@ -117,6 +129,9 @@ mod tests {
                 assert!((cov - full).amax() < 1e-12 * full.amax());
                 assert!((m.propagate_covariance(&x, &p, dt) - full).amax() < 1e-12 * full.amax());
                 assert_eq!(cov, cov.transpose());
+                let q = m.process_noise(&x, dt);
+                let (_, moments) = m.predict_moments(&x, &p, dt);
+                assert!((moments - (full + q)).amax() < 1e-12 * (full + q).amax());
             }
         }
     }
