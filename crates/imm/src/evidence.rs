@@ -236,13 +236,10 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N
     ) -> Result<EvidenceEstimate<N, R>, ImmError> {
         let hyp = self.hypotheses(est);
         let mut imms = est.imms;
-        let mut ll = [f64::NEG_INFINITY; 5];
-        for ((imm_est, h), l) in imms.iter_mut().zip(&hyp).zip(ll.iter_mut()) {
-            let (meas, z) = conversion.convert(plot, h)?;
-            let upd = self.imm.step(imm_est, dt, &meas, &z)?;
-            *imm_est = upd.estimate;
-            *l = upd.log_likelihood;
-        }
+        // The bank of IMMs runs on the path the multi-IMM uses (in place, no copies).
+        let ll = self
+            .imm
+            .step_hypotheses(&est.imms, &mut imms, dt, plot, &hyp, conversion)?;
         if !(log_sum_exp(&ll).is_finite() && ll.iter().all(|l| l.is_finite())) {
             return Err(ImmError::NoLikelihood {
                 what: "noise hypotheses",

@@ -13,6 +13,17 @@ use crate::{ImmError, MarkovMatrix};
 pub struct ImmEstimate<const N: usize, const R: usize> {
     modes: [Gaussian<N>; R],
     log_mu: [f64; R],
+    /// `μⱼ / maxᵢ μᵢ = exp(ln μⱼ − maxᵢ ln μᵢ)` (the largest is 1): the linear weights the
+    /// next mixing uses, kept from the update's log-sum-exp so that mixing needs no
+    /// exponentials. A mode below `e^{-745}` of the largest is 0 here and keeps its
+    /// probability in `log_mu`.
+    scaled: [f64; R],
+}
+
+/// `exp(lⱼ − maxᵢ lᵢ)` for log-probabilities `l` (the largest is 1).
+fn scaled_weights<const R: usize>(log: &[f64; R]) -> [f64; R] {
+    let max = log.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    log.map(|l| (l - max).exp())
 }
 
 impl<const N: usize, const R: usize> ImmEstimate<N, R> {
@@ -23,7 +34,11 @@ impl<const N: usize, const R: usize> ImmEstimate<N, R> {
     /// negative or non-finite entry or does not sum to one (within 1e-9).
     pub fn new(modes: [Gaussian<N>; R], mu: [f64; R]) -> Result<Self, ImmError> {
         let log_mu = log_probabilities(&mu, "initial mode probabilities")?;
-        Ok(Self { modes, log_mu })
+        Ok(Self {
+            modes,
+            scaled: scaled_weights(&log_mu),
+            log_mu,
+        })
     }
 
     /// Every mode starts from the same Gaussian (e.g. a two-point initialisation).
@@ -40,10 +55,18 @@ impl<const N: usize, const R: usize> ImmEstimate<N, R> {
         &self.modes
     }
 
-    /// The mode probabilities `μⱼ`.
+    /// The modes, for an update in place.
+    pub(crate) fn modes_mut(&mut self) -> &mut [Gaussian<N>; R] {
+        &mut self.modes
+    }
+
+    /// The mode probabilities `μⱼ` (a mode below `e^{-745}` of the most probable one is 0;
+    /// [`ImmEstimate::log_mode_probabilities`] keeps it).
     #[must_use]
     pub fn mode_probabilities(&self) -> [f64; R] {
-        self.log_mu.map(f64::exp)
+        // μⱼ = sⱼ / Σ sᵢ with the cached sⱼ = μⱼ / max μ: no exponentials.
+        let total: f64 = self.scaled.iter().sum();
+        self.scaled.map(|s| s / total)
     }
 
     /// `ln μⱼ` (−∞ for a mode that has become impossible).
@@ -84,20 +107,46 @@ pub fn moment_match<const N: usize, const K: usize>(
     weights: &[f64; K],
     parts: &[Gaussian<N>; K],
 ) -> Result<Gaussian<N>, ImmError> {
-    let mut mean = Vector::<N>::zeros();
-    for (w, g) in weights.iter().zip(parts) {
-        if *w > 0.0 {
-            mean += g.mean() * *w;
+    let (mean, cov) = mixture_moments(weights, parts);
+    Ok(Gaussian::from_lower_triangle(mean, cov)?)
+}
+
+/// The moments of [`moment_match`]: the mean and the covariance. Parts with a weight that
+/// is not positive are skipped. The arithmetic per entry is that of `Σ wₘ (Pₘ + dₘ dₘᵀ)`
+/// with `dₘ = xₘ − x` (the same operations in the same order as the nalgebra expression
+/// `(P + d dᵀ) w` summed over `m`), so the result is exactly symmetric.
+#[inline]
+fn mixture_moments<const N: usize, const K: usize>(
+    weights: &[f64; K],
+    parts: &[Gaussian<N>; K],
+) -> (Vector<N>, Matrix<N, N>) {
+    let mut mean = [0.0; N];
+    for (&w, g) in weights.iter().zip(parts) {
+        if w > 0.0 {
+            for (m, x) in mean.iter_mut().zip(g.mean().iter()) {
+                *m += x * w;
+            }
         }
     }
     let mut cov = Matrix::<N, N>::zeros();
-    for (w, g) in weights.iter().zip(parts) {
-        if *w > 0.0 {
-            let d = g.mean() - mean;
-            cov += (g.cov() + d * d.transpose()) * *w;
+    let c = &mut cov.data.0;
+    for (&w, g) in weights.iter().zip(parts) {
+        if w > 0.0 {
+            let mut d = [0.0; N];
+            for ((d, x), m) in d.iter_mut().zip(g.mean().iter()).zip(&mean) {
+                *d = x - m;
+            }
+            // Column-major storage: p[b][a] is entry (a, b). Whole columns (they vectorise;
+            // the entries above the diagonal equal their mirrors, as d[a] d[b] = d[b] d[a]).
+            let p = &g.cov().data.0;
+            for ((cb, pb), db) in c.iter_mut().zip(p).zip(&d) {
+                for ((cab, pab), da) in cb.iter_mut().zip(pb).zip(&d) {
+                    *cab += (pab + da * db) * w;
+                }
+            }
         }
     }
-    Ok(Gaussian::from_symmetrized(mean, &cov)?)
+    (Vector::<N>::from(mean), cov)
 }
 
 /// The mode-matched predictions of one IMM cycle, before a plot is used.
@@ -125,6 +174,7 @@ impl<const N: usize, const R: usize> ImmPrediction<N, R> {
     pub fn into_estimate(self) -> ImmEstimate<N, R> {
         ImmEstimate {
             modes: self.predicted,
+            scaled: scaled_weights(&self.log_cbar),
             log_mu: self.log_cbar,
         }
     }
@@ -193,23 +243,35 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
     /// # Errors
     /// [`ImmError::Math`] if a mixed covariance is not positive definite.
     pub fn mix(&self, est: &ImmEstimate<N, R>) -> Result<([Gaussian<N>; R], [f64; R]), ImmError> {
-        // Linear arithmetic on μ scaled by the largest one (R exponentials, not R²); a mode
-        // whose predicted probability would underflow (every contribution below e^{-690}
-        // of the largest) falls back to log-sum-exp, so nothing is lost to underflow.
+        let mut mixed = est.modes;
+        let log_cbar = self.mix_into(est, &mut mixed)?;
+        Ok((mixed, log_cbar))
+    }
+
+    /// Mixing into `mixed` (which must hold `est`'s modes: an unreachable mode keeps its
+    /// own estimate); returns `ln μ̄ⱼ`.
+    fn mix_into(
+        &self,
+        est: &ImmEstimate<N, R>,
+        mixed: &mut [Gaussian<N>; R],
+    ) -> Result<[f64; R], ImmError> {
+        // Linear arithmetic on μ scaled by the largest one (the cached `scaled`, kept from
+        // the last update: no exponentials here); a mode whose predicted probability would
+        // underflow (every contribution below e^{-690} of the largest) falls back to
+        // log-sum-exp, so nothing is lost to underflow.
         let pi = self.markov.matrix();
         let max = est.log_mu.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let scaled = est.log_mu.map(|l| (l - max).exp());
+        let scaled = &est.scaled;
         let mut log_cbar = [f64::NEG_INFINITY; R];
-        let mut mixed = est.modes;
-        for j in 0..R {
+        for (j, (lc, out)) in log_cbar.iter_mut().zip(mixed.iter_mut()).enumerate() {
             let mut w = [0.0; R];
             let mut c = 0.0;
-            for (i, (wi, mu)) in w.iter_mut().zip(&scaled).enumerate() {
+            for (i, (wi, mu)) in w.iter_mut().zip(scaled).enumerate() {
                 *wi = pi[(i, j)] * mu;
                 c += *wi;
             }
             if c > 1e-300 && c.is_finite() {
-                log_cbar[j] = c.ln() + max;
+                *lc = c.ln() + max;
                 for wi in &mut w {
                     *wi /= c;
                 }
@@ -219,17 +281,20 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
                 for (i, t) in terms.iter_mut().enumerate() {
                     *t = log_pi[(i, j)] + est.log_mu[i];
                 }
-                let lc = log_sum_exp(&terms);
-                log_cbar[j] = lc;
-                if lc == f64::NEG_INFINITY {
+                *lc = log_sum_exp(&terms);
+                if *lc == f64::NEG_INFINITY {
                     // Mode j cannot be reached: its probability is zero; keep its own estimate.
                     continue;
                 }
-                w = terms.map(|t| (t - lc).exp());
+                w = terms.map(|t| (t - *lc).exp());
             }
-            mixed[j] = moment_match(&w, &est.modes)?;
+            // The mixed covariance Σᵢ μᵢ|ⱼ (Pᵢ + dᵢ dᵢᵀ) is positive definite in exact
+            // arithmetic (a convex combination of positive-definite matrices plus
+            // positive-semidefinite spread terms); it is checked anyway (finite, and the
+            // LDLᵀ pivot test, a few dozen instructions).
+            *out = moment_match(&w, &est.modes)?;
         }
-        Ok((mixed, log_cbar))
+        Ok(log_cbar)
     }
 
     /// Mixing and mode-matched prediction over `dt` seconds (eqs (1)–(3)).
@@ -242,17 +307,73 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         est: &ImmEstimate<N, R>,
         dt: f64,
     ) -> Result<ImmPrediction<N, R>, ImmError> {
+        let mut predicted = est.modes;
+        let log_cbar = self.predict_into(est, dt, &mut predicted)?;
+        Ok(ImmPrediction {
+            predicted,
+            log_cbar,
+        })
+    }
+
+    /// [`Imm::predict`] into `out` (which must hold `est`'s modes); returns `ln μ̄ⱼ`.
+    pub(crate) fn predict_into(
+        &self,
+        est: &ImmEstimate<N, R>,
+        dt: f64,
+        out: &mut [Gaussian<N>; R],
+    ) -> Result<[f64; R], ImmError> {
         check_dt(dt).map_err(|_| ImmError::InvalidInterval { dt })?;
-        let (mut modes, log_cbar) = self.mix(est)?;
-        for (j, (f, g)) in self.filters.iter().zip(modes.iter_mut()).enumerate() {
+        let log_cbar = self.mix_into(est, out)?;
+        for (j, (f, g)) in self.filters.iter().zip(out.iter_mut()).enumerate() {
             *g = f
                 .predict(g, dt)
                 .map_err(|source| ImmError::Filter { mode: j, source })?;
         }
-        Ok(ImmPrediction {
-            predicted: modes,
-            log_cbar,
-        })
+        Ok(log_cbar)
+    }
+
+    /// The update of a prediction held in `est` (modes `x̂ⱼ(k|k−1)`) with `ln μ̄ⱼ` =
+    /// `log_cbar`, in place; returns `(ln Λ, ln Λⱼ)`. On an error `est` is left partly
+    /// updated: callers work on a copy.
+    pub(crate) fn update_in_place<const M: usize, Me: MeasurementModel<N, M>>(
+        &self,
+        est: &mut ImmEstimate<N, R>,
+        log_cbar: &[f64; R],
+        meas: &Me,
+        z: &Vector<M>,
+    ) -> Result<(f64, [f64; R]), ImmError> {
+        let mut ll = [f64::NEG_INFINITY; R];
+        for (j, ((f, g), l)) in self
+            .filters
+            .iter()
+            .zip(est.modes.iter_mut())
+            .zip(ll.iter_mut())
+            .enumerate()
+        {
+            let (post, innov) = f
+                .update(g, meas, z)
+                .map_err(|source| ImmError::Filter { mode: j, source })?;
+            *g = post;
+            *l = innov.log_likelihood;
+        }
+        let mut joint = [f64::NEG_INFINITY; R];
+        for ((v, lc), l) in joint.iter_mut().zip(log_cbar).zip(&ll) {
+            *v = lc + l;
+        }
+        // ln Λ = log-sum-exp of the joint terms (as `log_sum_exp`), keeping the shifted
+        // exponentials exp(joint − max): they are μⱼ / max μ, the next mixing's weights.
+        let max = joint.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if !max.is_finite() {
+            return Err(ImmError::NoLikelihood { what: "IMM modes" });
+        }
+        let scaled = joint.map(|v| (v - max).exp());
+        let total = max + scaled.iter().sum::<f64>().ln();
+        if !total.is_finite() {
+            return Err(ImmError::NoLikelihood { what: "IMM modes" });
+        }
+        est.log_mu = joint.map(|v| v - total);
+        est.scaled = scaled;
+        Ok((total, ll))
     }
 
     /// Mode-matched updates with plot `z`, likelihoods and mode probabilities (eqs (4)–(6)).
@@ -266,28 +387,17 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         meas: &Me,
         z: &Vector<M>,
     ) -> Result<ImmUpdate<N, R>, ImmError> {
-        let mut modes = pred.predicted;
-        let mut ll = [f64::NEG_INFINITY; R];
-        for (j, (f, g)) in self.filters.iter().zip(modes.iter_mut()).enumerate() {
-            let (post, innov) = f
-                .update(g, meas, z)
-                .map_err(|source| ImmError::Filter { mode: j, source })?;
-            *g = post;
-            ll[j] = innov.log_likelihood;
-        }
-        let mut joint = [f64::NEG_INFINITY; R];
-        for (j, v) in joint.iter_mut().enumerate() {
-            *v = pred.log_cbar[j] + ll[j];
-        }
-        let total = log_sum_exp(&joint);
-        if !total.is_finite() {
-            return Err(ImmError::NoLikelihood { what: "IMM modes" });
-        }
-        let log_mu = joint.map(|v| v - total);
+        let mut estimate = ImmEstimate {
+            modes: pred.predicted,
+            log_mu: pred.log_cbar,
+            scaled: [0.0; R],
+        };
+        let (log_likelihood, mode_log_likelihoods) =
+            self.update_in_place(&mut estimate, &pred.log_cbar, meas, z)?;
         Ok(ImmUpdate {
-            estimate: ImmEstimate { modes, log_mu },
-            log_likelihood: total,
-            mode_log_likelihoods: ll,
+            estimate,
+            log_likelihood,
+            mode_log_likelihoods,
         })
     }
 
@@ -302,7 +412,14 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         meas: &Me,
         z: &Vector<M>,
     ) -> Result<ImmUpdate<N, R>, ImmError> {
-        let pred = self.predict(est, dt)?;
-        self.update(&pred, meas, z)
+        let mut estimate = *est;
+        let log_cbar = self.predict_into(est, dt, &mut estimate.modes)?;
+        let (log_likelihood, mode_log_likelihoods) =
+            self.update_in_place(&mut estimate, &log_cbar, meas, z)?;
+        Ok(ImmUpdate {
+            estimate,
+            log_likelihood,
+            mode_log_likelihoods,
+        })
     }
 }

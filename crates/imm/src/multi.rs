@@ -4,7 +4,6 @@ use argus_core_math::Gaussian;
 use argus_filters::GaussianFilter;
 
 use crate::imm::moment_match;
-use crate::markov::log_sum_exp;
 use crate::{Imm, ImmError, ImmEstimate, NoiseVariances, PlotConversion, PolarPlot};
 
 /// The `K` noise hypotheses of a multi-IMM, as multiplicative factors
@@ -268,7 +267,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
     }
 
     /// One step with `plot` after `dt` seconds: [`MultiImm::predict`], then
-    /// [`MultiImm::update`].
+    /// [`MultiImm::update`] (fused: every IMM is predicted and updated in one buffer).
     ///
     /// # Errors
     /// [`ImmError::InvalidInterval`] for `dt` not finite and positive; any error of the
@@ -281,7 +280,22 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         plot: &PolarPlot,
         conversion: &C,
     ) -> Result<MultiImmUpdate<N, R, K>, ImmError> {
-        self.update(&self.predict(est, dt)?, plot, conversion)
+        // One buffer for the result, updated in place (no copies of the K estimates).
+        let mut out = MultiImmUpdate {
+            estimate: *est,
+            hypotheses: self.hypotheses(est),
+            log_likelihoods: [f64::NEG_INFINITY; K],
+        };
+        out.log_likelihoods = self.imm.step_hypotheses(
+            &est.imms,
+            &mut out.estimate.imms,
+            dt,
+            plot,
+            &out.hypotheses,
+            conversion,
+        )?;
+        self.finish(&mut out)?;
+        Ok(out)
     }
 
     /// The update of a prediction from [`MultiImm::predict`] with `plot` (steps 1–5 above,
@@ -297,29 +311,51 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         plot: &PolarPlot,
         conversion: &C,
     ) -> Result<MultiImmUpdate<N, R, K>, ImmError> {
-        let est = predicted;
-        let hyp = self.hypotheses(est);
-        let mut imms = est.imms;
-        let mut ll = [f64::NEG_INFINITY; K];
-        for ((imm_est, h), l) in imms.iter_mut().zip(&hyp).zip(ll.iter_mut()) {
-            let (meas, z) = conversion.convert(plot, h)?;
-            let upd = self.imm.update(&imm_est.into_prediction(), &meas, &z)?;
-            *imm_est = upd.estimate;
-            *l = upd.log_likelihood;
-        }
-        let total = log_sum_exp(&ll);
-        if !total.is_finite() {
+        let log_cbar = predicted.imms.map(|e| *e.log_mode_probabilities());
+        let mut out = MultiImmUpdate {
+            estimate: *predicted,
+            hypotheses: self.hypotheses(predicted),
+            log_likelihoods: [f64::NEG_INFINITY; K],
+        };
+        out.log_likelihoods = self.imm.update_hypotheses(
+            &mut out.estimate.imms,
+            &log_cbar,
+            plot,
+            &out.hypotheses,
+            conversion,
+        )?;
+        self.finish(&mut out)?;
+        Ok(out)
+    }
+
+    /// Steps 3–5 in place on `out`, which holds the updated IMMs, their likelihoods, this
+    /// step's hypotheses and the previous reference.
+    fn finish(&self, out: &mut MultiImmUpdate<N, R, K>) -> Result<(), ImmError> {
+        let hyp = &out.hypotheses;
+        let ll = &out.log_likelihoods;
+        // Eq (12) with the max shift: νᵐ = exp(ln Λᵐ − max) / Σ exp(ln Λⁱ − max).
+        let max = ll.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if !max.is_finite() {
             return Err(ImmError::NoLikelihood {
                 what: "noise hypotheses",
             });
         }
-        let nu = ll.map(|l| (l - total).exp());
+        let mut nu = ll.map(|l| (l - max).exp());
+        let sum: f64 = nu.iter().sum();
+        if !sum.is_finite() {
+            return Err(ImmError::NoLikelihood {
+                what: "noise hypotheses",
+            });
+        }
+        for n in &mut nu {
+            *n /= sum;
+        }
         let mut raw = [0.0; 2];
-        for (n, h) in nu.iter().zip(&hyp) {
+        for (n, h) in nu.iter().zip(hyp) {
             raw[0] += n * h.range();
             raw[1] += n * h.azimuth();
         }
-        let old = est.reference.as_array();
+        let old = out.estimate.reference.as_array();
         let mut new = [0.0; 2];
         for ((nv, rv), ov) in new.iter_mut().zip(raw).zip(old) {
             let ratio = rv / ov;
@@ -329,15 +365,51 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
             };
             *nv = ov * ratio;
         }
-        let reference = NoiseVariances::new(new[0], new[1])?;
-        Ok(MultiImmUpdate {
-            estimate: MultiImmEstimate {
-                imms,
-                reference,
-                nu,
-            },
-            hypotheses: hyp,
-            log_likelihoods: ll,
-        })
+        out.estimate.reference = NoiseVariances::new(new[0], new[1])?;
+        out.estimate.nu = nu;
+        Ok(())
+    }
+}
+
+impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
+    /// One IMM cycle for each of `K` noise hypotheses, the path shared by every estimator
+    /// that runs a bank of IMMs differing only in `R` ([`MultiImm`], the evidence
+    /// estimator): `out` (a copy of `src` on entry) receives the updated estimates; returns
+    /// `ln Λᵐ` per IMM. All predictions come first (a prediction error is reported before a
+    /// conversion error), then IMM `m` is updated in place with the plot converted under
+    /// `hyp[m]`. On an error `out` is partly updated: callers work on a copy.
+    pub(crate) fn step_hypotheses<const K: usize, const M: usize, C: PlotConversion<N, M>>(
+        &self,
+        src: &[ImmEstimate<N, R>; K],
+        out: &mut [ImmEstimate<N, R>; K],
+        dt: f64,
+        plot: &PolarPlot,
+        hyp: &[NoiseVariances; K],
+        conversion: &C,
+    ) -> Result<[f64; K], ImmError> {
+        let mut log_cbar = [[0.0; R]; K];
+        for ((o, s), lc) in out.iter_mut().zip(src).zip(log_cbar.iter_mut()) {
+            *lc = self.predict_into(s, dt, o.modes_mut())?;
+        }
+        self.update_hypotheses(out, &log_cbar, plot, hyp, conversion)
+    }
+
+    /// The update half of [`Imm::step_hypotheses`]: `imms` hold predictions with
+    /// `ln μ̄` = `log_cbar`; each is updated in place with the plot converted under its own
+    /// hypothesis. Returns `ln Λᵐ`.
+    pub(crate) fn update_hypotheses<const K: usize, const M: usize, C: PlotConversion<N, M>>(
+        &self,
+        imms: &mut [ImmEstimate<N, R>; K],
+        log_cbar: &[[f64; R]; K],
+        plot: &PolarPlot,
+        hyp: &[NoiseVariances; K],
+        conversion: &C,
+    ) -> Result<[f64; K], ImmError> {
+        let mut ll = [f64::NEG_INFINITY; K];
+        for (((imm_est, h), l), lc) in imms.iter_mut().zip(hyp).zip(ll.iter_mut()).zip(log_cbar) {
+            let (meas, z) = conversion.convert(plot, h)?;
+            *l = self.update_in_place(imm_est, lc, &meas, &z)?.0;
+        }
+        Ok(ll)
     }
 }

@@ -138,7 +138,16 @@ pub fn unbiased_conversion(
         var.azimuth.sqrt(),
         ConversionMethod::Unbiased,
     )?;
-    argus_core_math::SpdFactor::new_symmetric(&c.covariance, "converted measurement covariance")?;
+    // Positive definite: for a symmetric 2 × 2 matrix (finite, as `convert_polar` checked)
+    // the two Cholesky pivots are R₁₁ and det R / R₁₁, so both tests are the factorisation's.
+    let r = &c.covariance;
+    let (r11, r12, r22) = (r[(0, 0)], r[(1, 0)], r[(1, 1)]);
+    if !(r11 > 0.0 && r11 * r22 - r12 * r12 > 0.0) {
+        return Err(argus_core_math::MathError::NotPositiveDefinite {
+            what: "converted measurement covariance",
+        }
+        .into());
+    }
     Ok((c.position, c.covariance))
 }
 
