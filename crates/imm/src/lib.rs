@@ -11,6 +11,9 @@
 //!   independent range/azimuth grid as an option.
 //! - [`VariationalNoiseImm`]: beyond the paper, one IMM plus a variational-Bayes recursion
 //!   for range and azimuth variances whose fixed point is the true noise.
+//! - [`DifferenceNoiseImm`]: beyond the paper, one IMM whose range and azimuth variances
+//!   come from third differences of the raw plots (their expectation is the truth whatever
+//!   the IMM's motion models); [`EvidenceNoiseImm`]: five IMMs and a fitted likelihood curve.
 //! - Polar plots are converted with the unbiased conversion ([`unbiased_conversion`],
 //!   [`UnbiasedConversion`]) using each hypothesis' own variances.
 //!
@@ -31,6 +34,7 @@
 //! # Ok::<(), argus_imm::ImmError>(())
 //! ```
 
+mod difference;
 mod embed;
 mod error;
 mod evidence;
@@ -45,6 +49,7 @@ mod test_support;
 #[cfg(test)]
 mod tests;
 
+pub use difference::{DifferenceEstimate, DifferenceNoiseImm};
 pub use embed::Embedded;
 pub use error::ImmError;
 pub use evidence::{EvidenceEstimate, EvidenceNoiseImm};

@@ -238,13 +238,44 @@ enum Estimator {
         settle: Option<usize>,
         observed: bool,
     },
+    Difference {
+        rho: f64,
+    },
+}
+
+/// The IMM of the Monte Carlo runs: the paper's, or for exploration only a model set from
+/// `EV_MODELS="cv_sv,ct_deg,ct_sv"` (CV σv, CT ±rate in °/s, CT σv; eq (20) Markov matrix).
+fn mc_imm() -> Imm<Kf<Motion>, 4, 3> {
+    let Ok(spec) = std::env::var("EV_MODELS") else {
+        return paper_imm();
+    };
+    let v: Vec<f64> = spec.split(',').map(|x| x.parse().unwrap()).collect();
+    let w = v[1].to_radians();
+    Imm::new(
+        [
+            Kf(Motion::Cv { sv: v[0] }),
+            Kf(Motion::Ct { omega: w, sv: v[2] }),
+            Kf(Motion::Ct {
+                omega: -w,
+                sv: v[2],
+            }),
+        ],
+        MarkovMatrix::new([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]]).unwrap(),
+    )
+    .unwrap()
+}
+
+/// First seed of the Monte Carlo runs (run i uses `base + i`): 1000, or `EV_SEED` when
+/// exploring other seed sets.
+fn seed_base() -> u64 {
+    std::env::var("EV_SEED").map_or(1000, |v| v.parse().unwrap())
 }
 
 fn run_one(kind: Estimator, start_factor: f64, times: &[f64], pl: &[PolarPlot]) -> Outcome {
     let truth = NoiseVariances::from_sigmas(SIGMA_R, sigma_t()).unwrap();
     let var0 =
         NoiseVariances::new(truth.range() * start_factor, truth.azimuth() * start_factor).unwrap();
-    let imm = paper_imm();
+    let imm = mc_imm();
     let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
     let init = two_point(&pl[0], &pl[1], times[1] - times[0], &var0);
     let t_cut = 0.25 * 1019.0;
@@ -319,6 +350,19 @@ fn run_one(kind: Estimator, start_factor: f64, times: &[f64], pl: &[PolarPlot]) 
             let r = est.variances();
             out.ratio = [r.range() / truth.range(), r.azimuth() / truth.azimuth()];
         }
+        Estimator::Difference { rho } => {
+            let v = DifferenceNoiseImm::new(imm, rho).unwrap();
+            let mut est = DifferenceEstimate::new(init, var0, 2.0).unwrap();
+            for k in 2..times.len() {
+                est = v
+                    .step(&est, times[k] - times[k - 1], &pl[k], &conv)
+                    .unwrap()
+                    .0;
+                score(times[k], est.imm().combined().unwrap().mean(), &mut out);
+            }
+            let r = est.variances().unwrap();
+            out.ratio = [r.range() / truth.range(), r.azimuth() / truth.azimuth()];
+        }
     }
     out
 }
@@ -328,7 +372,7 @@ fn run_one(kind: Estimator, start_factor: f64, times: &[f64], pl: &[PolarPlot]) 
 fn campaign(kind: Estimator, start_factor: f64, runs: u64) -> ([f64; 2], f64, f64) {
     let times = beam_times();
     let (mut s, mut ss, mut sse, mut n) = ([0.0; 2], 0.0, 0.0, 0);
-    let base: u64 = std::env::var("EV_SEED").map_or(1000, |v| v.parse().unwrap());
+    let base = seed_base();
     for i in 0..runs {
         let mut rng = ChaCha8Rng::seed_from_u64(base + i);
         let pl = plots(&times, SIGMA_R, sigma_t(), &mut rng);
@@ -447,8 +491,9 @@ fn variational_estimator_ends_near_the_truth() {
 fn evidence_finals(kind: Estimator, start_factor: f64, runs: u64) -> [[f64; 2]; 3] {
     let times = beam_times();
     let (mut s, mut ss, mut mx) = ([0.0; 2], [0.0; 2], [0.0_f64; 2]);
+    let base = seed_base();
     for i in 0..runs {
-        let mut rng = ChaCha8Rng::seed_from_u64(1000 + i);
+        let mut rng = ChaCha8Rng::seed_from_u64(base + i);
         let pl = plots(&times, SIGMA_R, sigma_t(), &mut rng);
         let o = run_one(kind, start_factor, &times, &pl);
         for c in 0..2 {
@@ -516,6 +561,88 @@ fn evidence_estimator_range_within_three_percent_and_no_divergence() {
     }
 }
 
+/// The difference estimator as `argus run gimpo` runs it (ρ = 1, prior 2 pseudo-differences
+/// at the start): issue 4's claim, within 3 % of the true variance (mean over runs) from all
+/// five starts, range and azimuth separately.
+///
+/// Expected value, derived: every run's estimate is `(2 f σ² + Σ q) / (2 + n_q)` with the
+/// `n_q = 199` third differences of the plots after the two-point start, so (i) the start
+/// enters only through the prior: `ratio(f) − ratio(1) = 2 (f − 1) / 201` exactly, per run
+/// (common random numbers; nothing feeds back from the IMM), and (ii) `E[q] = σ² + c`, where
+/// `c` is the truth's own third difference (the turns' changes of acceleration), computed
+/// here from the noise-free plots: +0.05 % (range), +0.55 % (azimuth) of σ².
+/// Tolerance: the per-run sd is 0.13 … 0.17 (100 runs each of seeds 1000+i, 5000+i,
+/// 9000+i and these 200, docs/papers/000-gimpo.md); with 200 runs the standard error is
+/// ≤ 0.17/√200 = 0.012, and the mean must be within 3 of them of the derived value, and
+/// within the claim's 3 % of the truth (the derived value is at most 1.0105, so ≥ 1.6
+/// standard errors of room at the worst start).
+#[test]
+fn difference_estimator_within_three_percent_from_every_start() {
+    let runs = 200;
+    let kind = Estimator::Difference { rho: 1.0 };
+    let times = beam_times();
+    let truth = NoiseVariances::from_sigmas(SIGMA_R, sigma_t()).unwrap();
+    // The truth's own contribution c/σ² per axis (noise-free plots, the same weights).
+    let clean = plots(&times, 0.0, 0.0, &mut ChaCha8Rng::seed_from_u64(0));
+    let mut c = [0.0; 2];
+    let n_q = times.len() - 2 - 3;
+    for k in 5..times.len() {
+        let w = crate::difference::third_difference_weights(
+            times[k - 2] - times[k - 3],
+            times[k - 1] - times[k - 2],
+            times[k] - times[k - 1],
+        );
+        let norm: f64 = w.iter().map(|x| x * x).sum();
+        let (mut dr, mut da) = (0.0, 0.0);
+        for (j, wj) in w.iter().enumerate() {
+            let p = &clean[k - 3 + j];
+            dr += wj * (p.range() - clean[k].range());
+            da += wj * crate::variational::wrap_angle(p.azimuth() - clean[k].azimuth());
+        }
+        c[0] += dr * dr / norm / truth.range() / n_q as f64;
+        c[1] += da * da / norm / truth.azimuth() / n_q as f64;
+    }
+    println!(
+        "n_q {n_q}, truth's own share: range {:.4} azimuth {:.4}",
+        c[0], c[1]
+    );
+    assert_eq!(n_q, 199);
+    let se3 = 3.0 * 0.17 / (runs as f64).sqrt();
+    let prior = |f: f64| 2.0 * (f - 1.0) / (2.0 + n_q as f64);
+    let mut ends = Vec::new();
+    for f in STARTS {
+        let [mean, sd, mx] = evidence_finals(kind, f, runs);
+        println!(
+            "difference from {f}: range {:.4} (sd {:.3}, max {:.2}) azimuth {:.4} (sd {:.3}, max {:.2})",
+            mean[0], sd[0], mx[0], mean[1], sd[1], mx[1]
+        );
+        for ax in 0..2 {
+            assert!(
+                (mean[ax] - 1.0).abs() < 0.03,
+                "axis {ax} from {f}: {}",
+                mean[ax]
+            );
+            let want = 1.0 + c[ax] + prior(f);
+            assert!(
+                (mean[ax] - want).abs() < se3,
+                "axis {ax} from {f}: {} vs derived {want}",
+                mean[ax]
+            );
+            assert!((0.08..0.22).contains(&sd[ax]), "axis {ax}: sd {}", sd[ax]);
+        }
+        ends.push(mean);
+    }
+    for (f, m) in STARTS.iter().zip(&ends) {
+        for ax in 0..2 {
+            let shift = m[ax] - ends[2][ax];
+            assert!(
+                (shift - prior(*f)).abs() < 1e-9,
+                "axis {ax} from {f}: {shift}"
+            );
+        }
+    }
+}
+
 /// Exploration of the evidence estimator's parameters (prints; run with --release).
 #[test]
 #[ignore = "exploration: prints the 100-run table for a set of parameters"]
@@ -543,6 +670,125 @@ fn evidence_explore() {
             100.0 * (rms / true_r - 1.0)
         );
     }
+}
+
+/// Exploration of the difference estimator (prints; run with --release): `EV_RUNS`,
+/// `EV_SEED`, `EV_STRAIGHT`, `EV_RHO` as for [`evidence_explore`].
+#[test]
+#[ignore = "exploration: prints the 100-run table of the difference estimator"]
+fn difference_explore() {
+    let rho: f64 = std::env::var("EV_RHO").map_or(1.0, |v| v.parse().unwrap());
+    let runs: u64 = std::env::var("EV_RUNS").map_or(100, |v| v.parse().unwrap());
+    let true_r = campaign(Estimator::Fixed, 1.0, runs).2;
+    for f in STARTS {
+        let [mean, sd, mx] = evidence_finals(Estimator::Difference { rho }, f, runs);
+        let rms = campaign(Estimator::Difference { rho }, f, runs).2;
+        println!(
+            "difference rho {rho} start {f}: range {:.4} (sd {:.3}, max {:.2}) az {:.4} (sd {:.3}, max {:.2}) rms {:+.2} %",
+            mean[0],
+            sd[0],
+            mx[0],
+            mean[1],
+            sd[1],
+            mx[1],
+            100.0 * (rms / true_r - 1.0)
+        );
+    }
+}
+
+/// Consistency of an IMM on the gimpo truth with the true `R` (prints; run with --release):
+/// per Table 1 segment, the mean over runs and plots of the polar normalised innovation
+/// squares `ν_i² / S_ii` (`S = J P⁻ Jᵀ + R`, range and azimuth), the NEES of the combined
+/// posterior over 4 states (consistent: 1 each), and the post-fit moment
+/// `(ε_i² + (J P⁺ Jᵀ)_ii) / σ_i²` that the evidence read-out averages (consistent: 1).
+/// `EV_MODELS` picks another model set, `EV_STRAIGHT` the maneuver-free truth.
+#[test]
+#[ignore = "diagnosis: prints the IMM's consistency per segment of the gimpo truth"]
+fn imm_consistency_on_gimpo() {
+    let runs: u64 = std::env::var("EV_RUNS").map_or(100, |v| v.parse().unwrap());
+    let imm = mc_imm();
+    let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
+    let truth = NoiseVariances::from_sigmas(SIGMA_R, sigma_t()).unwrap();
+    let sig = truth.as_array();
+    let times = beam_times();
+    // Segment boundaries of Table 1 (s); a plot belongs to the segment its time falls in.
+    let ends = [
+        330.0, 393.0, 513.0, 570.0, 675.0, 718.0, 840.0, 863.0, 933.0, 1019.1,
+    ];
+    let seg = |t: f64| ends.iter().position(|e| t < *e).unwrap_or(9);
+    // Per segment: count, NIS_r, NIS_θ, NEES/4, post_r, post_θ.
+    let mut acc = [[0.0_f64; 6]; 10];
+    for i in 0..runs {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed_base() + i);
+        let pl = plots(&times, SIGMA_R, sigma_t(), &mut rng);
+        let mut est = two_point(&pl[0], &pl[1], times[1] - times[0], &truth);
+        for k in 2..times.len() {
+            let dt = times[k] - times[k - 1];
+            let pred = imm.predict(&est, dt).unwrap();
+            let pc = pred.into_estimate().combined().unwrap();
+            let (m, z) = conv.convert(&pl[k], &truth).unwrap();
+            est = imm.update(&pred, &m, &z).unwrap().estimate;
+            let c = est.combined().unwrap();
+            let polar = |g: &Gaussian<4>| {
+                let (x, y) = (g.mean()[0], g.mean()[2]);
+                let r = x.hypot(y);
+                let J = Matrix::<2, 2>::new(x / r, y / r, -y / (r * r), x / (r * r));
+                let P = Matrix::<2, 2>::new(
+                    g.cov()[(0, 0)],
+                    g.cov()[(0, 2)],
+                    g.cov()[(2, 0)],
+                    g.cov()[(2, 2)],
+                );
+                let jpj = J * P * J.transpose();
+                let e = [
+                    pl[k].range() - r,
+                    crate::variational::wrap_angle(pl[k].azimuth() - y.atan2(x)),
+                ];
+                (e, [jpj[(0, 0)], jpj[(1, 1)]])
+            };
+            let (nu, jpj_pred) = polar(&pc);
+            let (eps, jpj_post) = polar(&c);
+            let err = c.mean() - truth_at(times[k]);
+            let nees = (err.transpose() * c.cov().try_inverse().unwrap() * err)[(0, 0)];
+            let a = &mut acc[seg(times[k])];
+            a[0] += 1.0;
+            for ax in 0..2 {
+                a[1 + ax] += nu[ax] * nu[ax] / (jpj_pred[ax] + sig[ax]);
+                a[4 + ax] += (eps[ax] * eps[ax] + jpj_post[ax]) / sig[ax];
+            }
+            a[3] += nees / 4.0;
+        }
+    }
+    println!("segment (rate °/s): plots  NIS_r  NIS_θ  NEES/4  post_r  post_θ");
+    let rates = [0.0, 1.5, 0.0, -0.25, 0.0, -2.0, 0.0, -2.5, -0.5, 0.0];
+    let mut tot = [0.0_f64; 6];
+    for (j, a) in acc.iter().enumerate() {
+        let n = a[0].max(1.0);
+        println!(
+            "{j} ({:+.2}): {:5.0} {:6.3} {:6.3} {:6.3} {:6.3} {:6.3}",
+            rates[j],
+            a[0] / runs as f64,
+            a[1] / n,
+            a[2] / n,
+            a[3] / n,
+            a[4] / n,
+            a[5] / n
+        );
+        if j > 0 {
+            for (t, v) in tot.iter_mut().zip(a) {
+                *t += v;
+            }
+        }
+    }
+    let n = tot[0];
+    println!(
+        "after segment 0: NIS_r {:.3} NIS_θ {:.3} NEES/4 {:.3} post_r {:.3} post_θ {:.3}",
+        tot[1] / n,
+        tot[2] / n,
+        tot[3] / n,
+        tot[4] / n,
+        tot[5] / n
+    );
 }
 
 /// A loop of IMM and multi-IMM steps for `valgrind --tool=callgrind` (no assertion: a
@@ -578,8 +824,8 @@ fn profile_steps() {
 }
 
 /// Per-step cost of the evidence estimator against the paper's 5 × 3 rule for
-/// `valgrind --tool=callgrind` (no assertion: a profiling driver). `EV_PROF=multi` or
-/// `evidence`, `EV_PASSES` passes over one run's plots; the difference between two pass
+/// `valgrind --tool=callgrind` (no assertion: a profiling driver). `EV_PROF=multi`,
+/// `evidence` or `difference`, `EV_PASSES` passes over one run's plots; the difference between two pass
 /// counts divided by the extra steps is the instruction count per step.
 #[test]
 #[ignore = "profiling driver"]
@@ -601,13 +847,18 @@ fn profile_evidence_steps() {
     let ev = EvidenceNoiseImm::new(paper_imm(), 0.2, 1.0, Some(0.05))
         .unwrap()
         .with_post_fit(15);
+    let df = DifferenceNoiseImm::new(paper_imm(), 1.0).unwrap();
     let (mut n, mut steps) = (0.0, 0);
     for _ in 0..passes {
         let mut mest = MultiImmEstimate::new(init, var);
         let mut eest = EvidenceEstimate::new(init, var, 2.0).unwrap();
+        let mut dest = DifferenceEstimate::new(init, var, 2.0).unwrap();
         for k in 2..times.len() {
             let dt = times[k] - times[k - 1];
-            if which == "multi" {
+            if which == "difference" {
+                dest = df.step(&dest, dt, &pl[k], &conv).unwrap().0;
+                n += dest.variances().unwrap().range();
+            } else if which == "multi" {
                 mest = m.step(&mest, dt, &pl[k], &conv).unwrap().estimate;
                 n += mest.reference().range();
             } else {
