@@ -145,7 +145,9 @@ pub fn convert_polar(
     let sr2 = sr * sr;
     let r2 = r * r;
     let lam = (-0.5 * s).exp();
-    let lam2 = (-2.0 * s).exp();
+    // e^{−2σ²} = (e^{−σ²/2})⁴: one exponential, not two.
+    let lam_sq = lam * lam;
+    let lam2 = lam_sq * lam_sq;
     let out = match method {
         ConversionMethod::Linearized => {
             let B = polar_jacobian(r, t);
@@ -156,8 +158,8 @@ pub fn convert_polar(
             }
         }
         ConversionMethod::Debiased => {
-            let k = 1.0 - (lam * lam - lam);
-            let e2 = (-2.0 * s).exp();
+            let k = 1.0 - (lam_sq - lam);
+            let e2 = lam2;
             let (ch2, ch1) = ((2.0 * s).cosh(), s.cosh());
             let (sh2, sh1) = ((2.0 * s).sinh(), s.sinh());
             let (c2, n2) = (c * c, n * n);
@@ -172,9 +174,10 @@ pub fn convert_polar(
             }
         }
         ConversionMethod::Unbiased => {
-            let a = 1.0 / (lam * lam) - 2.0;
+            let a = 1.0 / lam_sq - 2.0;
             let b = 0.5 * (r2 + sr2);
-            let (c2t, s2t) = ((2.0 * t).cos(), (2.0 * t).sin());
+            // cos 2θ and sin 2θ from the double-angle identities (no second sine and cosine).
+            let (c2t, s2t) = ((c - n) * (c + n), 2.0 * n * c);
             let r11 = a * r2 * c * c + b * (1.0 + lam2 * c2t);
             let r22 = a * r2 * n * n + b * (1.0 - lam2 * c2t);
             let r12 = a * r2 * c * n + b * lam2 * s2t;
@@ -320,6 +323,34 @@ mod tests {
         ConversionMethod::Debiased,
         ConversionMethod::Unbiased,
     ];
+
+    proptest::proptest! {
+        #[test]
+        fn unbiased_polar_equals_its_closed_form(
+            r in 100.0f64..2e5,
+            t in -3.2f64..3.2,
+            sr in 0.0f64..200.0,
+            st in 0.0f64..0.2,
+        ) {
+            // Mo Longbin et al. (1998) / Bar-Shalom (2001) with cos 2θ, sin 2θ, e^{−σ²/2} and
+            // e^{−2σ²} each evaluated directly; the implementation uses the double-angle
+            // identities and λ⁴. Tolerance: round-off relative to r² + σr², the size of the
+            // terms that cancel in r11 and r22 (both forms carry that absolute round-off).
+            let got = convert_polar(r, t, sr, st, ConversionMethod::Unbiased).unwrap();
+            let s = st * st;
+            let (lam, lam2) = ((-0.5 * s).exp(), (-2.0 * s).exp());
+            let a = 1.0 / (lam * lam) - 2.0;
+            let b = 0.5 * (r * r + sr * sr);
+            let (c, n) = (t.cos(), t.sin());
+            let r11 = a * r * r * c * c + b * (1.0 + lam2 * (2.0 * t).cos());
+            let r22 = a * r * r * n * n + b * (1.0 - lam2 * (2.0 * t).cos());
+            let r12 = a * r * r * c * n + b * lam2 * (2.0 * t).sin();
+            let want = Matrix::<2, 2>::new(r11, r12, r12, r22);
+            proptest::prop_assert!((got.covariance - want).amax() <= 1e-12 * (r * r + sr * sr));
+            let pos = Vector::<2>::new(r * c / lam, r * n / lam);
+            proptest::prop_assert!((got.position - pos).amax() <= 1e-12 * r);
+        }
+    }
 
     #[test]
     fn spherical_reduces_to_polar_in_the_plane() {
