@@ -25,7 +25,7 @@ use argus_core_math::{Matrix, Vector};
 use crate::block::block_diag;
 use crate::cv::CvNoise;
 use crate::error::{MotionError, check_finite, check_non_negative};
-use crate::turn::turn_coeffs;
+use crate::turn::turn_sc;
 use crate::{LinearMotionModel, MotionModel};
 
 /// Coordinated turn at a known rate, state `[x, vx, y, vy]` (see the module docs).
@@ -72,16 +72,17 @@ impl CoordinatedTurn {
 
 /// The exact CT transition over `dt` at the rate `omega` (module docs).
 #[must_use]
+#[inline]
 pub fn ct_transition(omega: f64, dt: f64) -> Matrix<4, 4> {
-    let k = turn_coeffs(omega * dt);
-    let ts = dt * k.s;
-    let tc = dt * k.c;
+    let (sin, cos, s, c) = turn_sc(omega * dt);
+    let ts = dt * s;
+    let tc = dt * c;
     #[rustfmt::skip]
     let f = Matrix::<4, 4>::new(
-        1.0, ts,    0.0, -tc,
-        0.0, k.cos, 0.0, -k.sin,
-        0.0, tc,    1.0, ts,
-        0.0, k.sin, 0.0, k.cos,
+        1.0, ts,  0.0, -tc,
+        0.0, cos, 0.0, -sin,
+        0.0, tc,  1.0, ts,
+        0.0, sin, 0.0, cos,
     );
     f
 }
