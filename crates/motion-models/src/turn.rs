@@ -89,21 +89,54 @@ pub(crate) fn turn_coeffs(theta: f64) -> TurnCoeffs {
 /// `(sin θ, cos θ, S(θ), C(θ))` alone, for the transition (no derivatives): the same
 /// series below [`SERIES_LIMIT`]; above it `1 − cos θ` as `sin²θ / (1 + cos θ)` while
 /// `cos θ > 0` (no cancellation, and no third sine as in `2 sin²(θ/2)`), else directly.
+///
+/// The values at `|θ|` are kept per thread for the next call: an IMM bank predicts the
+/// same turn models over the same interval many times per step (the 5 × 3 multi-IMM: ten
+/// coordinated-turn predictions at `±ωT`), and the sine and cosine are most of a
+/// prediction's cost. `sin` and `C` are odd and `cos` and `S` even in `θ`, so `−|θ|` is
+/// served from `|θ|` with the signs flipped: the results are those of the direct
+/// evaluation, bit for bit (test).
 #[inline]
 pub(crate) fn turn_sc(theta: f64) -> (f64, f64, f64, f64) {
+    use std::cell::Cell;
+    thread_local! {
+        static LAST: Cell<(u64, [f64; 4])> = const { Cell::new((u64::MAX, [0.0; 4])) };
+    }
+    let a = theta.abs();
+    let key = a.to_bits();
+    let [sin, cos, s, c] = LAST.with(|last| {
+        let (k, v) = last.get();
+        if k == key {
+            v
+        } else {
+            let v = turn_sc_direct(a);
+            last.set((key, v));
+            v
+        }
+    });
+    if theta.is_sign_negative() {
+        (-sin, cos, s, -c)
+    } else {
+        (sin, cos, s, c)
+    }
+}
+
+/// [`turn_sc`] evaluated directly.
+#[inline]
+fn turn_sc_direct(theta: f64) -> [f64; 4] {
     let (sin, cos) = theta.sin_cos();
     if theta.abs() < SERIES_LIMIT {
         let u = theta * theta;
         let s = 1.0 - u / 6.0 * (1.0 - u / 20.0 * (1.0 - u / 42.0 * (1.0 - u / 72.0)));
         let c = theta * (0.5 - u / 24.0 * (1.0 - u / 30.0 * (1.0 - u / 56.0 * (1.0 - u / 90.0))));
-        (sin, cos, s, c)
+        [sin, cos, s, c]
     } else {
         let one_minus_cos = if cos > 0.0 {
             sin * sin / (1.0 + cos)
         } else {
             1.0 - cos
         };
-        (sin, cos, sin / theta, one_minus_cos / theta)
+        [sin, cos, sin / theta, one_minus_cos / theta]
     }
 }
 
@@ -119,6 +152,17 @@ mod tests {
         ] {
             let k = turn_coeffs(theta);
             let (sin, cos, s, c) = turn_sc(theta);
+            // The cached path (a repeat, and after the mirrored angle) equals the direct one.
+            let direct = turn_sc_direct(theta);
+            let _ = turn_sc(-theta);
+            let again = turn_sc(theta);
+            for (x, y) in [sin, cos, s, c].iter().zip(&direct) {
+                assert_eq!(x.to_bits(), y.to_bits(), "θ = {theta}");
+            }
+            assert_eq!(
+                [again.0, again.1, again.2, again.3].map(f64::to_bits),
+                direct.map(f64::to_bits)
+            );
             assert_eq!(
                 (sin.to_bits(), cos.to_bits()),
                 (k.sin.to_bits(), k.cos.to_bits())
