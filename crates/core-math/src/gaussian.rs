@@ -85,6 +85,62 @@ impl<const N: usize> Gaussian<N> {
         Ok(Self { mean, cov })
     }
 
+    /// The moment-matched Gaussian of the mixture `Σ wₘ N(xₘ, Pₘ)`:
+    /// `x = Σ wₘ xₘ`, `P = Σ wₘ [Pₘ + (xₘ − x)(xₘ − x)ᵀ]` (the spread-of-means term; Bar-Shalom,
+    /// Li & Kirubarajan 2001, §1.4.16). Parts with a weight that is not positive are skipped.
+    ///
+    /// `P` is a positive combination of positive-definite matrices (every part is a
+    /// constructed `Gaussian`) plus positive semi-definite spread terms, so it is positive
+    /// definite by construction: only finiteness is checked (of the weights and the result),
+    /// not definiteness. The per-entry arithmetic is `Σ wₘ (Pₘ + dₘ dₘᵀ)` with whole
+    /// columns, so the result is exactly symmetric.
+    ///
+    /// # Errors
+    /// [`MathError::OutOfDomain`] when no weight is positive or a weight is not finite;
+    /// [`MathError::NonFinite`] when the result is not finite (an overflow).
+    #[inline]
+    pub fn mixture<const K: usize>(
+        weights: &[f64; K],
+        parts: &[Self; K],
+    ) -> Result<Self, MathError> {
+        if !all_finite(weights) || !weights.iter().any(|&w| w > 0.0) {
+            return Err(MathError::OutOfDomain {
+                what: "mixture weights",
+                value: weights.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                domain: "finite, at least one positive",
+            });
+        }
+        let mut mean = [0.0; N];
+        for (&w, g) in weights.iter().zip(parts) {
+            if w > 0.0 {
+                for (m, x) in mean.iter_mut().zip(g.mean.iter()) {
+                    *m += x * w;
+                }
+            }
+        }
+        let mut cov = Matrix::<N, N>::zeros();
+        let c = &mut cov.data.0;
+        for (&w, g) in weights.iter().zip(parts) {
+            if w > 0.0 {
+                let mut d = [0.0; N];
+                for ((d, x), m) in d.iter_mut().zip(g.mean.iter()).zip(&mean) {
+                    *d = x - m;
+                }
+                // Column-major: p[b][a] is entry (a, b); d[a] d[b] = d[b] d[a], so the
+                // entries above the diagonal equal their mirrors.
+                for ((cb, pb), db) in c.iter_mut().zip(&g.cov.data.0).zip(&d) {
+                    for ((cab, pab), da) in cb.iter_mut().zip(pb).zip(&d) {
+                        *cab += (pab + da * db) * w;
+                    }
+                }
+            }
+        }
+        let mean = Vector::<N>::from(mean);
+        check_finite_vector(&mean, "mixture mean")?;
+        check_finite_matrix(&cov, "mixture covariance")?;
+        Ok(Self { mean, cov })
+    }
+
     /// The mean.
     #[must_use]
     pub fn mean(&self) -> &Vector<N> {
@@ -180,6 +236,48 @@ mod tests {
             Gaussian::from_lower_triangle(Vector::<2>::new(f64::NAN, 0.0), c),
             Err(MathError::NonFinite { what: "mean" })
         ));
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn mixture_moments_match_their_definition(
+            seed in proptest::array::uniform12(-3.0f64..3.0),
+            w in proptest::array::uniform3(0.0f64..1.0),
+        ) {
+            // Three parts with random means and SPD covariances; against the nalgebra
+            // expression of the definition. The result must also pass the full PD test.
+            let parts: [Gaussian<2>; 3] = std::array::from_fn(|m| {
+                let a = Matrix::<2, 2>::new(seed[4 * m], seed[4 * m + 1], seed[4 * m + 2], seed[4 * m + 3]);
+                Gaussian::new(
+                    Vector::<2>::new(seed[m], -seed[m + 4]),
+                    symmetrize(&(a * a.transpose() + Matrix::<2, 2>::identity() * 0.1)),
+                )
+                .unwrap()
+            });
+            proptest::prop_assume!(w.iter().sum::<f64>() > 1e-3);
+            let total: f64 = w.iter().sum();
+            let w = w.map(|x| x / total);
+            let g = Gaussian::mixture(&w, &parts).unwrap();
+            let mean: Vector<2> = parts.iter().zip(&w).map(|(p, &wm)| p.mean() * wm).sum();
+            let cov: Matrix<2, 2> = parts
+                .iter()
+                .zip(&w)
+                .map(|(p, &wm)| (p.cov() + (p.mean() - mean) * (p.mean() - mean).transpose()) * wm)
+                .sum();
+            proptest::prop_assert!((g.mean() - mean).amax() < 1e-12);
+            proptest::prop_assert!((g.cov() - cov).amax() < 1e-12 * (1.0 + cov.amax()));
+            proptest::prop_assert_eq!(*g.cov(), g.cov().transpose());
+            proptest::prop_assert!(is_positive_definite(g.cov()));
+        }
+    }
+
+    #[test]
+    fn mixture_rejects_bad_weights() {
+        let g = Gaussian::new(Vector::<2>::zeros(), Matrix::<2, 2>::identity()).unwrap();
+        assert!(Gaussian::mixture(&[0.0, 0.0], &[g, g]).is_err());
+        assert!(Gaussian::mixture(&[f64::NAN, 1.0], &[g, g]).is_err());
+        let one = Gaussian::mixture(&[0.0, 1.0], &[g, g]).unwrap();
+        assert_eq!(one, g);
     }
 
     #[test]
