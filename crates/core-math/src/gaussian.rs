@@ -49,17 +49,8 @@ impl<const N: usize> Gaussian<N> {
     /// [`MathError::NonFinite`] or [`MathError::NotPositiveDefinite`].
     #[inline]
     pub fn from_symmetrized(mean: Vector<N>, cov: &Matrix<N, N>) -> Result<Self, MathError> {
-        check_finite_vector(&mean, "mean")?;
-        let cov = symmetrize(cov);
-        // The LDLᵀ pivot test fails on non-finite entries too; only then is the cause named.
-        if !is_positive_definite(&cov) {
-            return Err(if all_finite(cov.as_slice()) {
-                MathError::NotPositiveDefinite { what: "covariance" }
-            } else {
-                MathError::NonFinite { what: "covariance" }
-            });
-        }
-        Ok(Self { mean, cov })
+        // The average is exactly symmetric; its lower triangle is the whole of it.
+        Self::from_lower_triangle(mean, symmetrize(cov))
     }
 
     /// Builds a Gaussian whose covariance is the lower triangle of `cov`, mirrored (the
@@ -73,8 +64,8 @@ impl<const N: usize> Gaussian<N> {
     pub fn from_lower_triangle(mean: Vector<N>, mut cov: Matrix<N, N>) -> Result<Self, MathError> {
         check_finite_vector(&mean, "mean")?;
         crate::kernels::mirror_lower(&mut cov);
-        // The LDLᵀ pivot test reads the lower triangle and fails on non-finite entries too;
-        // only then is the cause named.
+        // The definiteness test reads the lower triangle and fails on non-finite entries
+        // too; only then is the cause named.
         if !is_positive_definite(&cov) {
             return Err(if all_finite(cov.as_slice()) {
                 MathError::NotPositiveDefinite { what: "covariance" }
