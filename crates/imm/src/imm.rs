@@ -7,23 +7,69 @@ use argus_sensors::MeasurementModel;
 use crate::markov::{log_probabilities, log_sum_exp};
 use crate::{ImmError, MarkovMatrix};
 
-/// The state of an IMM: one Gaussian per mode and the mode probabilities, kept as logarithms
-/// so that a mode whose likelihood underflows `f64` keeps a usable (tiny) probability.
+/// Below this a probability is also kept as a logarithm ([`ModeWeights`]).
+const TINY: f64 = 1e-300;
+
+/// Mode probabilities `μⱼ`, kept linear (they sum to one, so the largest is at least
+/// `1/R`: no logarithms or exponentials per cycle), with `ln μⱼ` kept as well for every
+/// mode below [`TINY`], whose linear value has lost precision or underflowed to 0: such a
+/// mode keeps a usable (tiny) probability, e.g. `e^{-2000}`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ModeWeights<const R: usize> {
+    /// `μⱼ`.
+    lin: [f64; R],
+    /// `ln μⱼ` where `lin[j] < TINY` (−∞ for an impossible mode); 0 elsewhere (unused).
+    log: [f64; R],
+}
+
+impl<const R: usize> ModeWeights<R> {
+    /// All zero (a buffer).
+    pub(crate) const ZERO: Self = Self {
+        lin: [0.0; R],
+        log: [0.0; R],
+    };
+
+    /// From (normalised) logarithms `ln μⱼ`.
+    fn from_logs(log: &[f64; R]) -> Self {
+        let lin = log.map(f64::exp);
+        let mut kept = [0.0; R];
+        for ((k, l), p) in kept.iter_mut().zip(log).zip(&lin) {
+            if *p < TINY {
+                *k = *l;
+            }
+        }
+        Self { lin, log: kept }
+    }
+
+    /// `ln μⱼ`.
+    fn ln(&self, j: usize) -> f64 {
+        if self.lin[j] >= TINY {
+            self.lin[j].ln()
+        } else {
+            self.log[j]
+        }
+    }
+
+    /// `ln μⱼ` for every mode.
+    fn logs(&self) -> [f64; R] {
+        core::array::from_fn(|j| self.ln(j))
+    }
+}
+
+/// `ln x` out of line, for rare paths (so that it is not hoisted into the common one).
+#[cold]
+#[inline(never)]
+fn cold_ln(x: f64) -> f64 {
+    x.ln()
+}
+
+/// The state of an IMM: one Gaussian per mode and the mode probabilities, kept linear with
+/// logarithms for the modes too improbable for `f64` (a mode whose likelihood underflows
+/// keeps a usable, tiny probability).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImmEstimate<const N: usize, const R: usize> {
     modes: [Gaussian<N>; R],
-    log_mu: [f64; R],
-    /// `μⱼ / maxᵢ μᵢ = exp(ln μⱼ − maxᵢ ln μᵢ)` (the largest is 1): the linear weights the
-    /// next mixing uses, kept from the update's log-sum-exp so that mixing needs no
-    /// exponentials. A mode below `e^{-745}` of the largest is 0 here and keeps its
-    /// probability in `log_mu`.
-    scaled: [f64; R],
-}
-
-/// `exp(lⱼ − maxᵢ lᵢ)` for log-probabilities `l` (the largest is 1).
-fn scaled_weights<const R: usize>(log: &[f64; R]) -> [f64; R] {
-    let max = log.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    log.map(|l| (l - max).exp())
+    mu: ModeWeights<R>,
 }
 
 impl<const N: usize, const R: usize> ImmEstimate<N, R> {
@@ -34,10 +80,12 @@ impl<const N: usize, const R: usize> ImmEstimate<N, R> {
     /// negative or non-finite entry or does not sum to one (within 1e-9).
     pub fn new(modes: [Gaussian<N>; R], mu: [f64; R]) -> Result<Self, ImmError> {
         let log_mu = log_probabilities(&mu, "initial mode probabilities")?;
+        // Normalised (the sum may differ from one by 1e-9), in log space so that a tiny
+        // entry keeps its logarithm.
+        let ln_sum = mu.iter().sum::<f64>().ln();
         Ok(Self {
             modes,
-            scaled: scaled_weights(&log_mu),
-            log_mu,
+            mu: ModeWeights::from_logs(&log_mu.map(|l| l - ln_sum)),
         })
     }
 
@@ -60,19 +108,27 @@ impl<const N: usize, const R: usize> ImmEstimate<N, R> {
         &mut self.modes
     }
 
-    /// The mode probabilities `μⱼ` (a mode below `e^{-745}` of the most probable one is 0;
+    /// The mode probabilities in their stored form.
+    pub(crate) fn weights(&self) -> &ModeWeights<R> {
+        &self.mu
+    }
+
+    /// Sets the mode probabilities (a prediction's `μ̄`, coasting).
+    pub(crate) fn set_weights(&mut self, mu: ModeWeights<R>) {
+        self.mu = mu;
+    }
+
+    /// The mode probabilities `μⱼ` (a mode below about `e^{-745}` is 0;
     /// [`ImmEstimate::log_mode_probabilities`] keeps it).
     #[must_use]
     pub fn mode_probabilities(&self) -> [f64; R] {
-        // μⱼ = sⱼ / Σ sᵢ with the cached sⱼ = μⱼ / max μ: no exponentials.
-        let total: f64 = self.scaled.iter().sum();
-        self.scaled.map(|s| s / total)
+        self.mu.lin
     }
 
     /// `ln μⱼ` (−∞ for a mode that has become impossible).
     #[must_use]
-    pub fn log_mode_probabilities(&self) -> &[f64; R] {
-        &self.log_mu
+    pub fn log_mode_probabilities(&self) -> [f64; R] {
+        self.mu.logs()
     }
 
     /// The estimate as a "prediction" for a plot of the same instant as the last one: no
@@ -82,7 +138,7 @@ impl<const N: usize, const R: usize> ImmEstimate<N, R> {
     pub fn into_prediction(self) -> ImmPrediction<N, R> {
         ImmPrediction {
             predicted: self.modes,
-            log_cbar: self.log_mu,
+            log_cbar: self.mu.logs(),
         }
     }
 
@@ -174,8 +230,7 @@ impl<const N: usize, const R: usize> ImmPrediction<N, R> {
     pub fn into_estimate(self) -> ImmEstimate<N, R> {
         ImmEstimate {
             modes: self.predicted,
-            scaled: scaled_weights(&self.log_cbar),
-            log_mu: self.log_cbar,
+            mu: ModeWeights::from_logs(&self.log_cbar),
         }
     }
 }
@@ -244,49 +299,48 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
     /// [`ImmError::Math`] if a mixed covariance is not positive definite.
     pub fn mix(&self, est: &ImmEstimate<N, R>) -> Result<([Gaussian<N>; R], [f64; R]), ImmError> {
         let mut mixed = est.modes;
-        let log_cbar = self.mix_into(est, &mut mixed)?;
-        Ok((mixed, log_cbar))
+        let cbar = self.mix_into(est, &mut mixed)?;
+        Ok((mixed, cbar.logs()))
     }
 
     /// Mixing into `mixed` (which must hold `est`'s modes: an unreachable mode keeps its
-    /// own estimate); returns `ln μ̄ⱼ`.
+    /// own estimate); returns `μ̄ⱼ`.
     fn mix_into(
         &self,
         est: &ImmEstimate<N, R>,
         mixed: &mut [Gaussian<N>; R],
-    ) -> Result<[f64; R], ImmError> {
-        // Linear arithmetic on μ scaled by the largest one (the cached `scaled`, kept from
-        // the last update: no exponentials here); a mode whose predicted probability would
-        // underflow (every contribution below e^{-690} of the largest) falls back to
-        // log-sum-exp, so nothing is lost to underflow.
+    ) -> Result<ModeWeights<R>, ImmError> {
+        // Linear arithmetic on μ (no logarithms or exponentials); a mode whose predicted
+        // probability would be below TINY falls back to log-sum-exp over the kept
+        // logarithms, so nothing is lost to underflow.
         let pi = self.markov.matrix();
-        let max = est.log_mu.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let scaled = &est.scaled;
-        let mut log_cbar = [f64::NEG_INFINITY; R];
-        for (j, (lc, out)) in log_cbar.iter_mut().zip(mixed.iter_mut()).enumerate() {
+        let mu = &est.mu.lin;
+        let mut cbar = ModeWeights::ZERO;
+        for (j, ((cl, lc), out)) in cbar
+            .lin
+            .iter_mut()
+            .zip(cbar.log.iter_mut())
+            .zip(mixed.iter_mut())
+            .enumerate()
+        {
             let mut w = [0.0; R];
             let mut c = 0.0;
-            for (i, (wi, mu)) in w.iter_mut().zip(scaled).enumerate() {
-                *wi = pi[(i, j)] * mu;
+            for (i, (wi, m)) in w.iter_mut().zip(mu).enumerate() {
+                *wi = pi[(i, j)] * m;
                 c += *wi;
             }
-            if c > 1e-300 && c.is_finite() {
-                *lc = c.ln() + max;
+            if c >= TINY {
+                *cl = c;
                 for wi in &mut w {
                     *wi /= c;
                 }
             } else {
-                let log_pi = self.markov.log_matrix();
-                let mut terms = [f64::NEG_INFINITY; R];
-                for (i, t) in terms.iter_mut().enumerate() {
-                    *t = log_pi[(i, j)] + est.log_mu[i];
-                }
-                *lc = log_sum_exp(&terms);
+                *lc = self.mixing_in_logs(&est.mu, j, &mut w);
+                *cl = lc.exp();
                 if *lc == f64::NEG_INFINITY {
                     // Mode j cannot be reached: its probability is zero; keep its own estimate.
                     continue;
                 }
-                w = terms.map(|t| (t - *lc).exp());
             }
             // The mixed covariance Σᵢ μᵢ|ⱼ (Pᵢ + dᵢ dᵢᵀ) is positive definite in exact
             // arithmetic (a convex combination of positive-definite matrices plus
@@ -294,7 +348,26 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
             // LDLᵀ pivot test, a few dozen instructions).
             *out = moment_match(&w, &est.modes)?;
         }
-        Ok(log_cbar)
+        Ok(cbar)
+    }
+
+    /// The rare path of mixing, a predicted probability below [`TINY`]: `ln μ̄ⱼ` by
+    /// log-sum-exp over `ln πᵢⱼ + ln μᵢ`, and the mixing weights `μᵢ|ⱼ` into `w` (untouched
+    /// when `ln μ̄ⱼ = −∞`). Out of line and cold, so that the logarithms are not hoisted
+    /// into the common path.
+    #[cold]
+    #[inline(never)]
+    fn mixing_in_logs(&self, mu: &ModeWeights<R>, j: usize, w: &mut [f64; R]) -> f64 {
+        let log_pi = self.markov.log_matrix();
+        let mut terms = [f64::NEG_INFINITY; R];
+        for (i, t) in terms.iter_mut().enumerate() {
+            *t = log_pi[(i, j)] + mu.ln(i);
+        }
+        let lc = log_sum_exp(&terms);
+        if lc > f64::NEG_INFINITY {
+            *w = terms.map(|t| (t - lc).exp());
+        }
+        lc
     }
 
     /// Mixing and mode-matched prediction over `dt` seconds (eqs (1)–(3)).
@@ -308,40 +381,39 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         dt: f64,
     ) -> Result<ImmPrediction<N, R>, ImmError> {
         let mut predicted = est.modes;
-        let log_cbar = self.predict_into(est, dt, &mut predicted)?;
+        let cbar = self.predict_into(est, dt, &mut predicted)?;
         Ok(ImmPrediction {
             predicted,
-            log_cbar,
+            log_cbar: cbar.logs(),
         })
     }
 
-    /// [`Imm::predict`] into `out` (which must hold `est`'s modes); returns `ln μ̄ⱼ`.
+    /// [`Imm::predict`] into `out` (which must hold `est`'s modes); returns `μ̄ⱼ`.
     pub(crate) fn predict_into(
         &self,
         est: &ImmEstimate<N, R>,
         dt: f64,
         out: &mut [Gaussian<N>; R],
-    ) -> Result<[f64; R], ImmError> {
+    ) -> Result<ModeWeights<R>, ImmError> {
         check_dt(dt).map_err(|_| ImmError::InvalidInterval { dt })?;
-        let log_cbar = self.mix_into(est, out)?;
+        let cbar = self.mix_into(est, out)?;
         for (j, (f, g)) in self.filters.iter().zip(out.iter_mut()).enumerate() {
             *g = f
                 .predict(g, dt)
                 .map_err(|source| ImmError::Filter { mode: j, source })?;
         }
-        Ok(log_cbar)
+        Ok(cbar)
     }
 
-    /// The update of a prediction held in `est` (modes `x̂ⱼ(k|k−1)`) with `ln μ̄ⱼ` =
-    /// `log_cbar`, in place; returns `(ln Λ, ln Λⱼ)`. On an error `est` is left partly
-    /// updated: callers work on a copy.
-    pub(crate) fn update_in_place<const M: usize, Me: MeasurementModel<N, M>>(
+    /// The mode-matched updates of the predictions held in `est` (modes `x̂ⱼ(k|k−1)`), in
+    /// place; returns `ln Λⱼ`. On an error `est` is left partly updated: callers work on a
+    /// copy.
+    fn update_modes<const M: usize, Me: MeasurementModel<N, M>>(
         &self,
         est: &mut ImmEstimate<N, R>,
-        log_cbar: &[f64; R],
         meas: &Me,
         z: &Vector<M>,
-    ) -> Result<(f64, [f64; R]), ImmError> {
+    ) -> Result<[f64; R], ImmError> {
         let mut ll = [f64::NEG_INFINITY; R];
         for (j, ((f, g), l)) in self
             .filters
@@ -356,24 +428,89 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
             *g = post;
             *l = innov.log_likelihood;
         }
+        Ok(ll)
+    }
+
+    /// The update of a prediction held in `est` (modes `x̂ⱼ(k|k−1)`) with `μ̄ⱼ` = `cbar`,
+    /// in place; returns `(ln Λ, ln Λⱼ)`. On an error `est` is left partly updated:
+    /// callers work on a copy.
+    pub(crate) fn update_in_place<const M: usize, Me: MeasurementModel<N, M>>(
+        &self,
+        est: &mut ImmEstimate<N, R>,
+        cbar: &ModeWeights<R>,
+        meas: &Me,
+        z: &Vector<M>,
+    ) -> Result<(f64, [f64; R]), ImmError> {
+        let ll = self.update_modes(est, meas, z)?;
+        if !cbar.lin.iter().all(|&c| c >= TINY) {
+            // A predicted probability kept as a logarithm: the update in log space.
+            let total = Self::update_log_space(est, &cbar.logs(), &ll)?;
+            return Ok((total, ll));
+        }
+        // μⱼ ∝ μ̄ⱼ Λⱼ with the likelihoods shifted by their largest logarithm:
+        // Λ = e^max Σⱼ μ̄ⱼ exp(ln Λⱼ − max), at least e^max · TINY (the most likely mode's
+        // term), so the sum neither overflows nor vanishes.
+        let max = ll.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if !max.is_finite() {
+            return Err(ImmError::NoLikelihood { what: "IMM modes" });
+        }
+        let mut w = [0.0; R];
+        let mut sum = 0.0;
+        for ((wj, c), l) in w.iter_mut().zip(&cbar.lin).zip(&ll) {
+            *wj = c * (l - max).exp();
+            sum += *wj;
+        }
+        let ln_sum = sum.ln();
+        let total = max + ln_sum;
+        if !total.is_finite() {
+            return Err(ImmError::NoLikelihood { what: "IMM modes" });
+        }
+        let mu = &mut est.mu;
+        for (j, ((p, lg), wj)) in mu.lin.iter_mut().zip(mu.log.iter_mut()).zip(&w).enumerate() {
+            *p = wj / sum;
+            *lg = if *p >= TINY {
+                0.0
+            } else {
+                // ln μⱼ = ln μ̄ⱼ + ln Λⱼ − ln Λ (rare: a mode e^{-690} below the rest).
+                cold_ln(cbar.lin[j]) + (ll[j] - max) - ln_sum
+            };
+        }
+        Ok((total, ll))
+    }
+
+    /// Eq (6) in log space: `ln μⱼ = ln μ̄ⱼ + ln Λⱼ − ln Λ` with `ln Λ` by log-sum-exp, into
+    /// `est`; returns `ln Λ`.
+    fn update_log_space(
+        est: &mut ImmEstimate<N, R>,
+        log_cbar: &[f64; R],
+        ll: &[f64; R],
+    ) -> Result<f64, ImmError> {
         let mut joint = [f64::NEG_INFINITY; R];
-        for ((v, lc), l) in joint.iter_mut().zip(log_cbar).zip(&ll) {
+        for ((v, lc), l) in joint.iter_mut().zip(log_cbar).zip(ll) {
             *v = lc + l;
         }
-        // ln Λ = log-sum-exp of the joint terms (as `log_sum_exp`), keeping the shifted
-        // exponentials exp(joint − max): they are μⱼ / max μ, the next mixing's weights.
         let max = joint.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         if !max.is_finite() {
             return Err(ImmError::NoLikelihood { what: "IMM modes" });
         }
         let scaled = joint.map(|v| (v - max).exp());
-        let total = max + scaled.iter().sum::<f64>().ln();
+        let sum: f64 = scaled.iter().sum();
+        let total = max + sum.ln();
         if !total.is_finite() {
             return Err(ImmError::NoLikelihood { what: "IMM modes" });
         }
-        est.log_mu = joint.map(|v| v - total);
-        est.scaled = scaled;
-        Ok((total, ll))
+        let mu = &mut est.mu;
+        for (((p, lg), s), v) in mu
+            .lin
+            .iter_mut()
+            .zip(mu.log.iter_mut())
+            .zip(&scaled)
+            .zip(&joint)
+        {
+            *p = s / sum;
+            *lg = if *p >= TINY { 0.0 } else { v - total };
+        }
+        Ok(total)
     }
 
     /// Mode-matched updates with plot `z`, likelihoods and mode probabilities (eqs (4)–(6)).
@@ -389,11 +526,11 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
     ) -> Result<ImmUpdate<N, R>, ImmError> {
         let mut estimate = ImmEstimate {
             modes: pred.predicted,
-            log_mu: pred.log_cbar,
-            scaled: [0.0; R],
+            mu: ModeWeights::ZERO,
         };
-        let (log_likelihood, mode_log_likelihoods) =
-            self.update_in_place(&mut estimate, &pred.log_cbar, meas, z)?;
+        let mode_log_likelihoods = self.update_modes(&mut estimate, meas, z)?;
+        let log_likelihood =
+            Self::update_log_space(&mut estimate, &pred.log_cbar, &mode_log_likelihoods)?;
         Ok(ImmUpdate {
             estimate,
             log_likelihood,
@@ -413,13 +550,101 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         z: &Vector<M>,
     ) -> Result<ImmUpdate<N, R>, ImmError> {
         let mut estimate = *est;
-        let log_cbar = self.predict_into(est, dt, &mut estimate.modes)?;
+        let cbar = self.predict_into(est, dt, &mut estimate.modes)?;
         let (log_likelihood, mode_log_likelihoods) =
-            self.update_in_place(&mut estimate, &log_cbar, meas, z)?;
+            self.update_in_place(&mut estimate, &cbar, meas, z)?;
         Ok(ImmUpdate {
             estimate,
             log_likelihood,
             mode_log_likelihoods,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used)]
+
+    use argus_core_math::{Gaussian, Matrix, Vector};
+
+    use crate::test_support::{Kf, Motion};
+    use crate::{Imm, ImmEstimate, MarkovMatrix, PositionMeasurement};
+
+    fn meas(r: f64) -> PositionMeasurement<4> {
+        PositionMeasurement::new(0, 2, Matrix::<2, 2>::identity() * r).unwrap()
+    }
+
+    fn start() -> Gaussian<4> {
+        Gaussian::new(
+            Vector::<4>::new(100.0, 10.0, -50.0, 5.0),
+            Matrix::<4, 4>::from_diagonal(&Vector::<4>::new(400.0, 25.0, 400.0, 25.0)),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn linear_and_log_space_updates_agree() {
+        // The same cycle through `step` (linear μ̄) and `predict` + `update` (ln μ̄, eq (6)
+        // in log space): the probabilities and ln Λ agree to round-off (1e-12: a few dozen
+        // operations on numbers of order one).
+        let imm = Imm::new(
+            [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+            MarkovMatrix::new([[0.9, 0.1], [0.2, 0.8]]).unwrap(),
+        )
+        .unwrap();
+        let est = ImmEstimate::from_common(start(), [0.7, 0.3]).unwrap();
+        let z = Vector::<2>::new(160.0, -20.0);
+        let a = imm.step(&est, 5.0, &meas(40.0), &z).unwrap();
+        let b = imm
+            .update(&imm.predict(&est, 5.0).unwrap(), &meas(40.0), &z)
+            .unwrap();
+        assert!((a.log_likelihood - b.log_likelihood).abs() < 1e-12);
+        let (pa, pb) = (
+            a.estimate.mode_probabilities(),
+            b.estimate.mode_probabilities(),
+        );
+        let (la, lb) = (
+            a.estimate.log_mode_probabilities(),
+            b.estimate.log_mode_probabilities(),
+        );
+        for j in 0..2 {
+            assert!((pa[j] - pb[j]).abs() < 1e-12);
+            assert!((la[j] - lb[j]).abs() < 1e-12);
+            assert!((la[j] - pa[j].ln()).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_mode_below_f64_keeps_its_log_probability_through_cycles() {
+        // Mode 0 explains a plot 2 km off with R = 1 m² far worse than mode 1 (μ₀ ≈ e^{-883},
+        // below the smallest f64, e^{-745}): μ₀ is 0.0 and lives as ln μ₀ only. With Π = I
+        // the next cycle's ln μ̄₀ = ln μ₀ is below f64 too, so the update runs in log space;
+        // eq (6) must still hold for the logarithms: ln μ₀' = ln μ₀ + ln Λ₀ − ln Λ (relative
+        // 1e-12: round-off of a few additions of numbers up to ~1e3).
+        let mix = Imm::new(
+            [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+            MarkovMatrix::new([[0.5, 0.5], [0.5, 0.5]]).unwrap(),
+        )
+        .unwrap();
+        let est = ImmEstimate::from_common(start(), [0.5, 0.5]).unwrap();
+        let first = mix
+            .step(&est, 1.0, &meas(1.0), &Vector::<2>::new(2100.0, -50.0))
+            .unwrap()
+            .estimate;
+        let l0 = first.log_mode_probabilities()[0];
+        assert!(first.mode_probabilities()[0] == 0.0 && l0.is_finite() && l0 < -745.0);
+        let stay = Imm::new(
+            [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+            MarkovMatrix::new([[1.0, 0.0], [0.0, 1.0]]).unwrap(),
+        )
+        .unwrap();
+        let z = Vector::<2>::new(2110.0, -40.0);
+        let second = stay.step(&first, 1.0, &meas(100.0), &z).unwrap();
+        let l0_new = second.estimate.log_mode_probabilities()[0];
+        let expected = l0 + second.mode_log_likelihoods[0] - second.log_likelihood;
+        assert!(l0_new.is_finite());
+        assert!((l0_new - expected).abs() < 1e-12 * expected.abs());
+        let mu = second.estimate.mode_probabilities();
+        assert!((mu.iter().sum::<f64>() - 1.0).abs() < 1e-12);
     }
 }

@@ -3,7 +3,7 @@
 use argus_core_math::Gaussian;
 use argus_filters::GaussianFilter;
 
-use crate::imm::moment_match;
+use crate::imm::{ModeWeights, moment_match};
 use crate::{Imm, ImmError, ImmEstimate, NoiseVariances, PlotConversion, PolarPlot};
 
 /// The `K` noise hypotheses of a multi-IMM, as multiplicative factors
@@ -261,7 +261,9 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
     ) -> Result<MultiImmEstimate<N, R, K>, ImmError> {
         let mut out = *est;
         for (imm_est, src) in out.imms.iter_mut().zip(&est.imms) {
-            *imm_est = self.imm.predict(src, dt)?.into_estimate();
+            // As `predict(src, dt)?.into_estimate()`, without the round trip through logs.
+            let cbar = self.imm.predict_into(src, dt, imm_est.modes_mut())?;
+            imm_est.set_weights(cbar);
         }
         Ok(out)
     }
@@ -311,7 +313,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         plot: &PolarPlot,
         conversion: &C,
     ) -> Result<MultiImmUpdate<N, R, K>, ImmError> {
-        let log_cbar = predicted.imms.map(|e| *e.log_mode_probabilities());
+        let cbar = predicted.imms.map(|e| *e.weights());
         let mut out = MultiImmUpdate {
             estimate: *predicted,
             hypotheses: self.hypotheses(predicted),
@@ -319,7 +321,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         };
         out.log_likelihoods = self.imm.update_hypotheses(
             &mut out.estimate.imms,
-            &log_cbar,
+            &cbar,
             plot,
             &out.hypotheses,
             conversion,
@@ -387,28 +389,28 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         hyp: &[NoiseVariances; K],
         conversion: &C,
     ) -> Result<[f64; K], ImmError> {
-        let mut log_cbar = [[0.0; R]; K];
-        for ((o, s), lc) in out.iter_mut().zip(src).zip(log_cbar.iter_mut()) {
-            *lc = self.predict_into(s, dt, o.modes_mut())?;
+        let mut cbar = [ModeWeights::ZERO; K];
+        for ((o, s), c) in out.iter_mut().zip(src).zip(cbar.iter_mut()) {
+            *c = self.predict_into(s, dt, o.modes_mut())?;
         }
-        self.update_hypotheses(out, &log_cbar, plot, hyp, conversion)
+        self.update_hypotheses(out, &cbar, plot, hyp, conversion)
     }
 
     /// The update half of [`Imm::step_hypotheses`]: `imms` hold predictions with
-    /// `ln μ̄` = `log_cbar`; each is updated in place with the plot converted under its own
+    /// `μ̄` = `cbar`; each is updated in place with the plot converted under its own
     /// hypothesis. Returns `ln Λᵐ`.
     pub(crate) fn update_hypotheses<const K: usize, const M: usize, C: PlotConversion<N, M>>(
         &self,
         imms: &mut [ImmEstimate<N, R>; K],
-        log_cbar: &[[f64; R]; K],
+        cbar: &[ModeWeights<R>; K],
         plot: &PolarPlot,
         hyp: &[NoiseVariances; K],
         conversion: &C,
     ) -> Result<[f64; K], ImmError> {
         let mut ll = [f64::NEG_INFINITY; K];
-        for (((imm_est, h), l), lc) in imms.iter_mut().zip(hyp).zip(ll.iter_mut()).zip(log_cbar) {
+        for (((imm_est, h), l), c) in imms.iter_mut().zip(hyp).zip(ll.iter_mut()).zip(cbar) {
             let (meas, z) = conversion.convert(plot, h)?;
-            *l = self.update_in_place(imm_est, lc, &meas, &z)?.0;
+            *l = self.update_in_place(imm_est, c, &meas, &z)?.0;
         }
         Ok(ll)
     }
