@@ -1,6 +1,6 @@
 //! The interacting multiple model (IMM) estimator, seed 000 eqs (1)–(7).
 
-use argus_core_math::{Gaussian, Matrix, Vector};
+use argus_core_math::{Gaussian, Vector};
 use argus_filters::{GaussianFilter, check_dt};
 use argus_sensors::MeasurementModel;
 
@@ -155,54 +155,20 @@ impl<const N: usize, const R: usize> ImmEstimate<N, R> {
 
 /// The moment-matched Gaussian of a mixture `Σ wₘ N(xₘ, Pₘ)` with weights that sum to one:
 /// `x = Σ wₘ xₘ`, `P = Σ wₘ [Pₘ + (xₘ − x)(xₘ − x)ᵀ]` (the spread-of-means term,
-/// seed 000 eqs (2), (7)).
+/// seed 000 eqs (2), (7)); [`Gaussian::mixture`]. Parts with a weight that is not positive
+/// are skipped. `P` is positive definite by construction (a positive combination of
+/// positive-definite covariances plus positive semi-definite spread terms), so only
+/// finiteness is checked.
 ///
 /// # Errors
-/// [`ImmError::Math`] if the result is non-finite or not positive definite.
+/// [`ImmError::Math`] if the result is non-finite, a weight is not finite or no weight is
+/// positive.
+#[inline]
 pub fn moment_match<const N: usize, const K: usize>(
     weights: &[f64; K],
     parts: &[Gaussian<N>; K],
 ) -> Result<Gaussian<N>, ImmError> {
-    let (mean, cov) = mixture_moments(weights, parts);
-    Ok(Gaussian::from_lower_triangle(mean, cov)?)
-}
-
-/// The moments of [`moment_match`]: the mean and the covariance. Parts with a weight that
-/// is not positive are skipped. The arithmetic per entry is that of `Σ wₘ (Pₘ + dₘ dₘᵀ)`
-/// with `dₘ = xₘ − x` (the same operations in the same order as the nalgebra expression
-/// `(P + d dᵀ) w` summed over `m`), so the result is exactly symmetric.
-#[inline]
-fn mixture_moments<const N: usize, const K: usize>(
-    weights: &[f64; K],
-    parts: &[Gaussian<N>; K],
-) -> (Vector<N>, Matrix<N, N>) {
-    let mut mean = [0.0; N];
-    for (&w, g) in weights.iter().zip(parts) {
-        if w > 0.0 {
-            for (m, x) in mean.iter_mut().zip(g.mean().iter()) {
-                *m += x * w;
-            }
-        }
-    }
-    let mut cov = Matrix::<N, N>::zeros();
-    let c = &mut cov.data.0;
-    for (&w, g) in weights.iter().zip(parts) {
-        if w > 0.0 {
-            let mut d = [0.0; N];
-            for ((d, x), m) in d.iter_mut().zip(g.mean().iter()).zip(&mean) {
-                *d = x - m;
-            }
-            // Column-major storage: p[b][a] is entry (a, b). Whole columns (they vectorise;
-            // the entries above the diagonal equal their mirrors, as d[a] d[b] = d[b] d[a]).
-            let p = &g.cov().data.0;
-            for ((cb, pb), db) in c.iter_mut().zip(p).zip(&d) {
-                for ((cab, pab), da) in cb.iter_mut().zip(pb).zip(&d) {
-                    *cab += (pab + da * db) * w;
-                }
-            }
-        }
-    }
-    (Vector::<N>::from(mean), cov)
+    Ok(Gaussian::mixture(weights, parts)?)
 }
 
 /// The mode-matched predictions of one IMM cycle, before a plot is used.
@@ -342,10 +308,9 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
                     continue;
                 }
             }
-            // The mixed covariance Σᵢ μᵢ|ⱼ (Pᵢ + dᵢ dᵢᵀ) is positive definite in exact
-            // arithmetic (a convex combination of positive-definite matrices plus
-            // positive-semidefinite spread terms); it is checked anyway (finite, and the
-            // LDLᵀ pivot test, a few dozen instructions).
+            // The mixed covariance Σᵢ μᵢ|ⱼ (Pᵢ + dᵢ dᵢᵀ): a convex combination of
+            // positive-definite matrices plus positive-semidefinite spread terms (checked
+            // for finiteness).
             *out = moment_match(&w, &est.modes)?;
         }
         Ok(cbar)
