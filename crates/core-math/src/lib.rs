@@ -30,7 +30,8 @@ pub use error::MathError;
 pub use gaussian::Gaussian;
 pub use linalg::{
     SpdFactor, check_finite_matrix, check_finite_vector, is_positive_definite, joseph_update,
-    joseph_update_from_cross, joseph_update_from_innovation, log_likelihood, symmetrize,
+    joseph_update_from_cross, joseph_update_from_innovation, log_det_of_pivots, log_likelihood,
+    symmetrize,
 };
 
 /// Re-export of the faer version used for run-time-sized algebra.

@@ -314,14 +314,14 @@ impl<const N: usize> SpdFactor<N> {
     #[must_use]
     #[inline]
     pub fn log_det(&self) -> f64 {
-        // One logarithm of the product of the pivots when that product is a normal
-        // float; otherwise (under- or overflow) the sum of logarithms.
-        let product: f64 = self.d.iter().product();
-        if product.is_normal() {
-            product.ln()
-        } else {
-            self.d.iter().map(|d| d.ln()).sum::<f64>()
-        }
+        log_det_of_pivots(&self.d)
+    }
+
+    /// The pivots `D` of `A = L D Lᵀ` (their product is `|A|`).
+    #[must_use]
+    #[inline]
+    pub fn pivots(&self) -> [f64; N] {
+        self.d
     }
 
     /// The squared Mahalanobis distance `vᵀ A⁻¹ v = Σ wᵢ² / dᵢ` with `L w = v`.
@@ -348,6 +348,20 @@ impl<const N: usize> SpdFactor<N> {
         -0.5 * (self.mahalanobis_sq(v)
             + self.log_det()
             + N as f64 * (2.0 * std::f64::consts::PI).ln())
+    }
+}
+
+/// `ln Π dᵢ` of positive pivots (a determinant's logarithm, [`SpdFactor::pivots`]): one
+/// logarithm of the product when that is a normal float, otherwise (under- or overflow) the
+/// sum of logarithms.
+#[must_use]
+#[inline]
+pub fn log_det_of_pivots<const N: usize>(d: &[f64; N]) -> f64 {
+    let product: f64 = d.iter().product();
+    if product.is_normal() {
+        product.ln()
+    } else {
+        d.iter().map(|d| d.ln()).sum::<f64>()
     }
 }
 

@@ -204,6 +204,9 @@ mod tests {
             .unwrap();
         assert!((post.mean() - Vector::<2>::new(2.25, 1.5) / 3.25).amax() < 1e-14);
         assert!((innov.nis - 1.0 / 3.25).abs() < 1e-14);
+        // ln N(1; 0, 3.25) = −½ (1/3.25 + ln(2π · 3.25)), computed on demand.
+        let ll = -0.5 * (1.0 / 3.25 + (2.0 * std::f64::consts::PI * 3.25).ln());
+        assert!((innov.log_likelihood() - ll).abs() < 1e-14);
         let p11 = 2.25 - 2.25 * 2.25 / 3.25;
         assert!((post.cov()[(0, 0)] - p11).abs() < 1e-12);
     }
@@ -302,7 +305,7 @@ mod tests {
                 let tol = 1e-12 * (1.0 + pred.cov().amax());
                 proptest::prop_assert!((pa.cov() - pb.cov()).amax() < tol);
                 proptest::prop_assert!((pa.mean() - pb.mean()).amax() < tol);
-                proptest::prop_assert!((ia.log_likelihood - ib.log_likelihood).abs() < 1e-12 * (1.0 + ia.log_likelihood.abs()));
+                proptest::prop_assert!((ia.log_likelihood() - ib.log_likelihood()).abs() < 1e-12 * (1.0 + ia.log_likelihood().abs()));
             }
         }
     }

@@ -2,7 +2,7 @@
 
 use argus_core_math::{
     Gaussian, Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector,
-    joseph_update_from_innovation, kernels, unit_ball_volume,
+    joseph_update_from_innovation, kernels, log_det_of_pivots, unit_ball_volume,
 };
 use argus_sensors::MeasurementModel;
 
@@ -31,7 +31,6 @@ pub struct MeasurementPrediction<const N: usize, const M: usize> {
     jacobian: Option<Matrix<M, N>>,
     noise: Matrix<M, M>,
     form: CovarianceForm,
-    log_det_s: f64,
 }
 
 /// The innovation of one plot against a [`MeasurementPrediction`].
@@ -41,8 +40,20 @@ pub struct Innovation<const M: usize> {
     pub residual: Vector<M>,
     /// The normalised innovation squared `νᵀ S⁻¹ ν`.
     pub nis: f64,
-    /// The Gaussian log-likelihood `ln N(ν; 0, S)`.
-    pub log_likelihood: f64,
+    /// The pivots of `S = L D Lᵀ`, for the likelihood's normaliser (computed on demand).
+    s_pivots: [f64; M],
+}
+
+impl<const M: usize> Innovation<M> {
+    /// The Gaussian log-likelihood `ln N(ν; 0, S) = −½ (NIS + ln|S| + M ln 2π)`, computed when
+    /// asked (one logarithm): a filter step that does not need it does not pay for it.
+    #[must_use]
+    #[inline]
+    pub fn log_likelihood(&self) -> f64 {
+        -0.5 * (self.nis
+            + log_det_of_pivots(&self.s_pivots)
+            + M as f64 * (2.0 * std::f64::consts::PI).ln())
+    }
 }
 
 impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
@@ -72,7 +83,6 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
         let gain = s_factor.solve_right(&cross);
         // A non-finite `P_xz` (or an overflow of the division) shows in the gain.
         check_finite_matrix(&gain, "gain")?;
-        let log_det_s = s_factor.log_det();
         Ok(Self {
             z_pred,
             s,
@@ -82,7 +92,6 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
             jacobian,
             noise,
             form,
-            log_det_s,
         })
     }
 
@@ -131,7 +140,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     /// `ln |S|`.
     #[must_use]
     pub fn log_det_s(&self) -> f64 {
-        self.log_det_s
+        self.s_factor.log_det()
     }
 
     /// The normalised innovation squared `νᵀ S⁻¹ ν` of a residual.
@@ -145,13 +154,13 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     #[must_use]
     #[inline]
     pub fn log_likelihood_from_nis(&self, nis: f64) -> f64 {
-        -0.5 * (nis + self.log_det_s + M as f64 * (2.0 * std::f64::consts::PI).ln())
+        -0.5 * (nis + self.log_det_s() + M as f64 * (2.0 * std::f64::consts::PI).ln())
     }
 
     /// The volume of the gate `νᵀ S⁻¹ ν ≤ γ`: `c_M γ^{M/2} |S|^{1/2}`.
     #[must_use]
     pub fn gate_volume(&self, gamma: f64) -> f64 {
-        unit_ball_volume(M) * gamma.powf(M as f64 / 2.0) * (0.5 * self.log_det_s).exp()
+        unit_ball_volume(M) * gamma.powf(M as f64 / 2.0) * (0.5 * self.log_det_s()).exp()
     }
 
     /// The innovation of plot `z` (residual through `meas`, wrapping angles).
@@ -174,7 +183,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
         Ok(Innovation {
             residual,
             nis,
-            log_likelihood: self.log_likelihood_from_nis(nis),
+            s_pivots: self.s_factor.pivots(),
         })
     }
 

@@ -391,7 +391,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
                 .update(g, meas, z)
                 .map_err(|source| ImmError::Filter { mode: j, source })?;
             *g = post;
-            *l = innov.log_likelihood;
+            *l = innov.log_likelihood();
         }
         Ok(ll)
     }

@@ -37,7 +37,7 @@ fn single_mode_imm_is_the_kalman_filter() {
     let c = upd.estimate.combined().unwrap();
     assert!((c.mean() - post.mean()).amax() < 1e-9);
     assert!((c.cov() - post.cov()).amax() < 1e-9);
-    assert!((upd.log_likelihood - innov.log_likelihood).abs() < 1e-12);
+    assert!((upd.log_likelihood - innov.log_likelihood()).abs() < 1e-12);
 }
 
 #[test]
@@ -71,7 +71,7 @@ fn mode_probabilities_and_mixing_match_a_hand_computation() {
         }
         let pred = f[j].predict(&Gaussian::new(x0, P0).unwrap(), 5.0).unwrap();
         let (post, innov) = f[j].update(&pred, &meas(40.0), &z).unwrap();
-        lik[j] = innov.log_likelihood.exp();
+        lik[j] = innov.log_likelihood().exp();
         assert!((upd.estimate.modes()[j].mean() - post.mean()).amax() < 1e-9);
     }
     let total = cbar[0] * lik[0] + cbar[1] * lik[1];

@@ -116,11 +116,11 @@ impl Estimators {
         match (&self.ekf, polar, p.polar) {
             (Some(ekf), Some(model), Some(z)) => {
                 let (post, innov) = ekf.update(pred, model, &z).ok()?;
-                Some((post, innov.log_likelihood - z[0].ln()))
+                Some((post, innov.log_likelihood() - z[0].ln()))
             }
             _ => {
                 let (post, innov) = self.kf.update(pred, &p.model, &p.position).ok()?;
-                Some((post, innov.log_likelihood))
+                Some((post, innov.log_likelihood()))
             }
         }
     }
@@ -137,7 +137,7 @@ pub(crate) fn innovation(
 ) -> Option<(f64, f64)> {
     if let (Some((mp, model)), Some(z)) = (polar, p.polar) {
         let innov = mp.innovation(model, &z).ok()?;
-        return Some((innov.nis, innov.log_likelihood - z[0].ln()));
+        return Some((innov.nis, innov.log_likelihood() - z[0].ln()));
     }
     position_innovation(pred, p)
 }
@@ -182,7 +182,7 @@ pub(crate) fn imm_innovation(
         let mp = f.predict_measurement(g, &p.model).ok()?;
         let innov = mp.innovation(&p.model, &p.position).ok()?;
         nis = nis.min(innov.nis);
-        terms[r] = pred.log_predicted_probabilities()[r] + innov.log_likelihood;
+        terms[r] = pred.log_predicted_probabilities()[r] + innov.log_likelihood();
     }
     Some((nis, log_sum_exp(&terms)))
 }
@@ -284,7 +284,7 @@ pub(crate) fn imm_jpda_update(
         for (r, (f, g)) in imm.filters().iter().zip(modes).enumerate() {
             let (g_post, innov) = f.update(g, &p.model, &p.position).ok()?;
             post[r] = g_post;
-            joint[r] = lc[r] + innov.log_likelihood;
+            joint[r] = lc[r] + innov.log_likelihood();
         }
         let total = log_sum_exp(&joint);
         if !total.is_finite() {
@@ -412,7 +412,9 @@ mod tests {
             let mp = kf.predict_measurement(&pred, &model).unwrap();
             let innov = mp.innovation(&model, &z).unwrap();
             assert!((nis - innov.nis).abs() < 1e-12 * (1.0 + innov.nis));
-            assert!((ll - innov.log_likelihood).abs() < 1e-12 * (1.0 + innov.log_likelihood.abs()));
+            assert!(
+                (ll - innov.log_likelihood()).abs() < 1e-12 * (1.0 + innov.log_likelihood().abs())
+            );
         }
     }
 }
