@@ -4,7 +4,7 @@
 //! inlined for the 2–6-dimensional sizes of per-track filtering; these loops have
 //! compile-time bounds, so the compiler unrolls and vectorises them in place. They compute
 //! the same sums as `*` (the order of the terms may differ in the last bit). The per-step
-//! instruction counts are in `docs/BENCHMARKS.md` (measured with
+//! instruction counts are in `docs/STATUS.md` (measured with
 //! `crates/filters/examples/step_timing.rs <filter> <steps>` under callgrind).
 
 use crate::Matrix;
