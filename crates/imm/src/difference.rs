@@ -2,6 +2,7 @@
 
 use argus_filters::GaussianFilter;
 
+use crate::error::{check_forgetting, check_positive};
 use crate::variational::wrap_angle;
 use crate::{Imm, ImmError, ImmEstimate, ImmUpdate, NoiseVariances, PlotConversion, PolarPlot};
 
@@ -33,13 +34,7 @@ impl<const N: usize, const R: usize> DifferenceEstimate<N, R> {
         initial: NoiseVariances,
         prior_count: f64,
     ) -> Result<Self, ImmError> {
-        if !(prior_count.is_finite() && prior_count > 0.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "prior count",
-                value: prior_count,
-                reason: "must be finite and positive",
-            });
-        }
+        check_positive("prior count", prior_count)?;
         Ok(Self {
             imm,
             recent: [[0.0; 2]; 3],
@@ -134,13 +129,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> DifferenceNoiseImm<F,
     /// # Errors
     /// [`ImmError::InvalidParameter`] unless `forgetting ∈ (0, 1]`.
     pub fn new(imm: Imm<F, N, R>, forgetting: f64) -> Result<Self, ImmError> {
-        if !(forgetting.is_finite() && forgetting > 0.0 && forgetting <= 1.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "forgetting factor",
-                value: forgetting,
-                reason: "must be in (0, 1]",
-            });
-        }
+        check_forgetting(forgetting)?;
         Ok(Self { imm, forgetting })
     }
 

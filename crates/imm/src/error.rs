@@ -77,3 +77,50 @@ pub enum ImmError {
         what: &'static str,
     },
 }
+
+/// Checks that `value` is finite and positive.
+///
+/// # Errors
+/// [`ImmError::InvalidParameter`] naming `what`.
+pub(crate) fn check_positive(what: &'static str, value: f64) -> Result<(), ImmError> {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(ImmError::InvalidParameter {
+            what,
+            value,
+            reason: "must be finite and positive",
+        })
+    }
+}
+
+/// Checks a forgetting factor: in `(0, 1]`.
+///
+/// # Errors
+/// [`ImmError::InvalidParameter`] naming the forgetting factor.
+pub(crate) fn check_forgetting(value: f64) -> Result<(), ImmError> {
+    if value.is_finite() && value > 0.0 && value <= 1.0 {
+        Ok(())
+    } else {
+        Err(ImmError::InvalidParameter {
+            what: "forgetting factor",
+            value,
+            reason: "must be in (0, 1]",
+        })
+    }
+}
+
+/// Checks an optional per-step clip: when given, in `(0, 1)`.
+///
+/// # Errors
+/// [`ImmError::InvalidParameter`] naming `what`.
+pub(crate) fn check_clip(what: &'static str, clip: Option<f64>) -> Result<(), ImmError> {
+    match clip {
+        Some(c) if !(c.is_finite() && c > 0.0 && c < 1.0) => Err(ImmError::InvalidParameter {
+            what,
+            value: c,
+            reason: "must be in (0, 1)",
+        }),
+        _ => Ok(()),
+    }
+}

@@ -3,6 +3,7 @@
 use argus_core_math::Gaussian;
 use argus_filters::GaussianFilter;
 
+use crate::error::{check_clip, check_forgetting, check_positive};
 use crate::markov::log_sum_exp;
 use crate::{Imm, ImmError, ImmEstimate, NoiseVariances, PlotConversion, PolarPlot};
 
@@ -43,13 +44,7 @@ impl<const N: usize, const R: usize> EvidenceEstimate<N, R> {
         initial: NoiseVariances,
         prior_count: f64,
     ) -> Result<Self, ImmError> {
-        if !(prior_count.is_finite() && prior_count > 0.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "prior count",
-                value: prior_count,
-                reason: "must be finite and positive",
-            });
-        }
+        check_positive("prior count", prior_count)?;
         let w = -0.5 * prior_count;
         Ok(Self {
             imms: [start; 5],
@@ -147,29 +142,9 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N
         forgetting: f64,
         clip: Option<f64>,
     ) -> Result<Self, ImmError> {
-        if !(spacing.is_finite() && spacing > 0.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "hypothesis spacing",
-                value: spacing,
-                reason: "must be finite and positive",
-            });
-        }
-        if !(forgetting.is_finite() && forgetting > 0.0 && forgetting <= 1.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "forgetting factor",
-                value: forgetting,
-                reason: "must be in (0, 1]",
-            });
-        }
-        if let Some(c) = clip
-            && !(c.is_finite() && c > 0.0 && c < 1.0)
-        {
-            return Err(ImmError::InvalidParameter {
-                what: "anchor clip",
-                value: c,
-                reason: "must be in (0, 1)",
-            });
-        }
+        check_positive("hypothesis spacing", spacing)?;
+        check_forgetting(forgetting)?;
+        check_clip("anchor clip", clip)?;
         Ok(Self {
             imm,
             step: spacing.ln_1p(),

@@ -3,6 +3,7 @@
 use argus_core_math::Gaussian;
 use argus_filters::GaussianFilter;
 
+use crate::error::{check_clip, check_positive};
 use crate::imm::{ModeWeights, moment_match};
 use crate::{Imm, ImmError, ImmEstimate, NoiseVariances, PlotConversion, PolarPlot};
 
@@ -74,13 +75,7 @@ impl<const K: usize> NoiseGrid<K> {
                 what: "noise hypotheses",
             });
         }
-        if !(p.is_finite() && p > 0.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "grid spacing p",
-                value: p,
-                reason: "must be finite and positive",
-            });
-        }
+        check_positive("grid spacing p", p)?;
         for f in factors.iter().flatten() {
             if !(f.is_finite() && *f > 0.0) {
                 return Err(ImmError::InvalidParameter {
@@ -218,15 +213,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
     /// # Errors
     /// [`ImmError::InvalidParameter`] unless `clip` is in `(0, 1)`.
     pub fn new(imm: Imm<F, N, R>, grid: NoiseGrid<K>, clip: Option<f64>) -> Result<Self, ImmError> {
-        if let Some(c) = clip
-            && !(c.is_finite() && c > 0.0 && c < 1.0)
-        {
-            return Err(ImmError::InvalidParameter {
-                what: "reference clip",
-                value: c,
-                reason: "must be in (0, 1)",
-            });
-        }
+        check_clip("reference clip", clip)?;
         Ok(Self { imm, grid, clip })
     }
 

@@ -5,6 +5,7 @@ use argus_core_math::{Matrix, Vector};
 use argus_sensors::{ConversionMethod, LinearMeasurementModel, MeasurementModel, convert_polar};
 
 use crate::ImmError;
+use crate::error::check_positive;
 
 /// A radar plot: range (m) and azimuth (rad, from +x counter-clockwise).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,13 +64,7 @@ impl NoiseVariances {
     /// [`ImmError::InvalidParameter`] unless both are finite and positive.
     pub fn new(range: f64, azimuth: f64) -> Result<Self, ImmError> {
         for (what, v) in [("range variance", range), ("azimuth variance", azimuth)] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(ImmError::InvalidParameter {
-                    what,
-                    value: v,
-                    reason: "must be finite and positive",
-                });
-            }
+            check_positive(what, v)?;
         }
         Ok(Self { range, azimuth })
     }

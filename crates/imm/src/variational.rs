@@ -3,6 +3,7 @@
 use argus_core_math::Matrix;
 use argus_filters::GaussianFilter;
 
+use crate::error::{check_forgetting, check_positive};
 use crate::{Imm, ImmError, ImmEstimate, ImmUpdate, NoiseVariances, PlotConversion, PolarPlot};
 
 /// The state of a [`VariationalNoiseImm`]: the IMM estimate and inverse-gamma statistics
@@ -25,13 +26,7 @@ impl<const N: usize, const R: usize> VariationalEstimate<N, R> {
         initial: NoiseVariances,
         prior_count: f64,
     ) -> Result<Self, ImmError> {
-        if !(prior_count.is_finite() && prior_count > 0.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "prior count",
-                value: prior_count,
-                reason: "must be finite and positive",
-            });
-        }
+        check_positive("prior count", prior_count)?;
         let alpha = 0.5 * prior_count;
         Ok(Self {
             imm,
@@ -87,13 +82,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> VariationalNoiseImm<F
     /// # Errors
     /// [`ImmError::InvalidParameter`] unless `forgetting ∈ (0, 1]`.
     pub fn new(imm: Imm<F, N, R>, forgetting: f64) -> Result<Self, ImmError> {
-        if !(forgetting.is_finite() && forgetting > 0.0 && forgetting <= 1.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "forgetting factor",
-                value: forgetting,
-                reason: "must be in (0, 1]",
-            });
-        }
+        check_forgetting(forgetting)?;
         Ok(Self {
             imm,
             forgetting,
