@@ -85,15 +85,13 @@ pub fn is_positive_definite<const N: usize>(a: &Matrix<N, N>) -> bool {
 #[inline]
 fn bareiss_minors_positive<const N: usize>(a: &Matrix<N, N>) -> bool {
     let mut m = a.data.0;
-    let mut smallest = f64::INFINITY;
-    let mut sum = 0.0;
+    let mut pivots = PivotTest::new();
     // After step j, m[c][r] (c, r > j) is the minor of rows 0..=j, r and columns 0..=j, c
     // (Bareiss: (d_j m − m_jc m_jr) / d_{j−1}, with d_{−1} = 1).
     let mut inv_prev = 1.0;
     for j in 0..N {
         let d = m[j][j];
-        smallest = smallest.min(d);
-        sum += d;
+        pivots.add(d);
         for c in j + 1..N {
             for r in c..N {
                 m[c][r] = (d * m[c][r] - m[j][c] * m[j][r]) * inv_prev;
@@ -101,33 +99,45 @@ fn bareiss_minors_positive<const N: usize>(a: &Matrix<N, N>) -> bool {
         }
         inv_prev = 1.0 / d;
     }
-    // A NaN or ±∞ minor makes the sum non-finite.
-    smallest > 0.0 && sum.is_finite()
+    pivots.passed()
 }
 
-/// The exact path of [`is_positive_definite`]: every `LDLᵀ` pivot positive and finite.
+/// The exact path of [`is_positive_definite`]: every `LDLᵀ` pivot positive and finite (the
+/// factorisation of [`SpdFactor`], whose factor is discarded; only reached when the fast
+/// path fails).
 #[inline(never)]
-#[expect(
-    clippy::needless_range_loop,
-    reason = "the elimination reads column j while it updates column c of the same array"
-)]
 fn ldl_pivots_positive<const N: usize>(a: &Matrix<N, N>) -> bool {
-    let mut m = a.data.0;
-    let mut smallest = f64::INFINITY;
-    let mut sum = 0.0;
-    for j in 0..N {
-        let d = m[j][j];
-        smallest = smallest.min(d);
-        sum += d;
-        let inv = 1.0 / d;
-        for c in j + 1..N {
-            let f = m[j][c] * inv;
-            for r in c..N {
-                m[c][r] -= f * m[j][r];
-            }
+    SpdFactor::new_symmetric(a, "matrix").is_ok()
+}
+
+/// The running test of a factorisation's pivots: all positive and finite, as the smallest
+/// positive and the sum finite (a NaN or ±∞ pivot makes the sum non-finite): two float
+/// operations per pivot and one test at the end, no branch per pivot.
+#[derive(Clone, Copy)]
+struct PivotTest {
+    smallest: f64,
+    sum: f64,
+}
+
+impl PivotTest {
+    #[inline]
+    fn new() -> Self {
+        Self {
+            smallest: f64::INFINITY,
+            sum: 0.0,
         }
     }
-    smallest > 0.0 && sum.is_finite()
+
+    #[inline]
+    fn add(&mut self, d: f64) {
+        self.smallest = self.smallest.min(d);
+        self.sum += d;
+    }
+
+    #[inline]
+    fn passed(self) -> bool {
+        self.smallest > 0.0 && self.sum.is_finite()
+    }
 }
 
 /// The factorisation `A = L D Lᵀ` (`L` unit lower triangular, `D` diagonal and positive) of
@@ -184,16 +194,13 @@ impl<const N: usize> SpdFactor<N> {
         let mut w = [[0.0; N]; N];
         let mut d = [0.0; N];
         let mut inv_d = [0.0; N];
-        let mut smallest = f64::INFINITY;
-        let mut sum = 0.0;
+        let mut pivots = PivotTest::new();
         for j in 0..N {
             let mut dj = a[j][j];
             for k in 0..j {
                 dj -= l[k][j] * w[k][j];
             }
-            // As in `is_positive_definite`: the smallest pivot positive, their sum finite.
-            smallest = smallest.min(dj);
-            sum += dj;
+            pivots.add(dj);
             let inv = 1.0 / dj;
             d[j] = dj;
             inv_d[j] = inv;
@@ -206,7 +213,7 @@ impl<const N: usize> SpdFactor<N> {
                 l[j][i] = s * inv;
             }
         }
-        if smallest > 0.0 && sum.is_finite() {
+        if pivots.passed() {
             Ok(Self { l, d, inv_d })
         } else {
             let full = Matrix::<N, N>::from_data(nalgebra::ArrayStorage(*a));
