@@ -68,6 +68,14 @@ impl CoordinatedTurn {
     pub fn sigma_v(&self) -> f64 {
         self.sigma_v
     }
+
+    /// The per-axis DWNA block `σv² [[T⁴/4, T³/2], [T³/2, T²]]` of `Q = σv² Γ Γᵀ`.
+    fn axis_noise(&self, dt: f64) -> Matrix<2, 2> {
+        CvNoise::DiscreteWhiteAcceleration {
+            sigma_a: self.sigma_v,
+        }
+        .axis_covariance(dt)
+    }
 }
 
 /// The exact CT transition over `dt` at the rate `omega` (module docs).
@@ -95,11 +103,11 @@ pub fn ct_transition(omega: f64, dt: f64) -> Matrix<4, 4> {
 fn ct_congruence(f: &Matrix<4, 4>, p: &Matrix<4, 4>) -> Matrix<4, 4> {
     let f = &f.data.0;
     let p = &p.data.0;
-    let apply = |m: [f64; 4], c1: f64, c3: f64| -> [f64; 4] {
+    let apply = |m: [f64; 4]| -> [f64; 4] {
         // F m for a column m: e₀ m₀ + e₂ m₂ + F₁ m₁ + F₃ m₃.
         let mut out = [0.0; 4];
         for (r, o) in out.iter_mut().enumerate() {
-            *o = f[1][r] * c1 + f[3][r] * c3;
+            *o = f[1][r] * m[1] + f[3][r] * m[3];
         }
         out[0] += m[0];
         out[2] += m[2];
@@ -108,7 +116,7 @@ fn ct_congruence(f: &Matrix<4, 4>, p: &Matrix<4, 4>) -> Matrix<4, 4> {
     // A = F P, column by column.
     let mut a = [[0.0; 4]; 4];
     for (ac, pc) in a.iter_mut().zip(p) {
-        *ac = apply(*pc, pc[1], pc[3]);
+        *ac = apply(*pc);
     }
     // B = A Fᵀ: column j is Σ_k A_k F(j, k) = δ_{j0} A₀ + δ_{j2} A₂ + A₁ F(j, 1) + A₃ F(j, 3).
     let mut b = [[0.0; 4]; 4];
@@ -155,10 +163,7 @@ impl MotionModel<4> for CoordinatedTurn {
         dt: f64,
     ) -> (Vector<4>, Matrix<4, 4>) {
         let (mean, mut cov) = self.propagate_with_covariance(x, p, dt);
-        let q = CvNoise::DiscreteWhiteAcceleration {
-            sigma_a: self.sigma_v,
-        }
-        .axis_covariance(dt);
+        let q = self.axis_noise(dt);
         for k in [0, 2] {
             for c in 0..2 {
                 for r in 0..2 {
@@ -171,11 +176,7 @@ impl MotionModel<4> for CoordinatedTurn {
 
     /// `Q = σv² Γ Γᵀ` (seed 000), independent of the state.
     fn process_noise(&self, _x: &Vector<4>, dt: f64) -> Matrix<4, 4> {
-        let block = CvNoise::DiscreteWhiteAcceleration {
-            sigma_a: self.sigma_v,
-        }
-        .axis_covariance(dt);
-        block_diag::<4, 2>(&block)
+        block_diag::<4, 2>(&self.axis_noise(dt))
     }
 
     /// The transition is linear in the state: all Hessians are zero.

@@ -40,20 +40,19 @@ pub(crate) struct TurnCoeffs {
     pub(crate) ddc: f64,
 }
 
-/// The coefficients at the turn angle `theta = ω T`.
+/// The coefficients at the turn angle `theta = ω T`: [`turn_sc`]'s four, and the
+/// derivatives (series below [`SERIES_LIMIT`], closed forms above it).
 pub(crate) fn turn_coeffs(theta: f64) -> TurnCoeffs {
-    let (sin, cos) = theta.sin_cos();
+    let [sin, cos, s, c] = turn_sc_direct(theta);
     if theta.abs() < SERIES_LIMIT {
         let u = theta * theta;
-        // Taylor coefficients: S = Σ (−1)ᵏ θ²ᵏ/(2k+1)!, C = Σ (−1)ᵏ⁺¹ θ²ᵏ⁻¹/(2k)!,
+        // Taylor coefficients of S = Σ (−1)ᵏ θ²ᵏ/(2k+1)! and C = Σ (−1)ᵏ⁺¹ θ²ᵏ⁻¹/(2k)!,
         // differentiated term by term.
-        let s = 1.0 - u / 6.0 * (1.0 - u / 20.0 * (1.0 - u / 42.0 * (1.0 - u / 72.0)));
         let ds = theta
             * (-1.0 / 3.0
                 + u * (1.0 / 30.0 - u * (1.0 / 840.0 - u * (1.0 / 45_360.0 - u / 3_991_680.0))));
         let dds =
             -1.0 / 3.0 + u * (1.0 / 10.0 - u * (1.0 / 168.0 - u * (1.0 / 6_480.0 - u / 443_520.0)));
-        let c = theta * (0.5 - u / 24.0 * (1.0 - u / 30.0 * (1.0 - u / 56.0 * (1.0 - u / 90.0))));
         let dc = 0.5 - u * (1.0 / 8.0 - u * (1.0 / 144.0 - u * (1.0 / 5_760.0 - u / 403_200.0)));
         let ddc = theta
             * (-0.25
@@ -69,15 +68,14 @@ pub(crate) fn turn_coeffs(theta: f64) -> TurnCoeffs {
             ddc,
         }
     } else {
-        let half = (0.5 * theta).sin();
-        let one_minus_cos = 2.0 * half * half;
+        let one_minus_cos = one_minus_cos(sin, cos);
         let t2 = theta * theta;
         let t3 = t2 * theta;
         TurnCoeffs {
             sin,
             cos,
-            s: sin / theta,
-            c: one_minus_cos / theta,
+            s,
+            c,
             ds: (theta * cos - sin) / t2,
             dc: (theta * sin - one_minus_cos) / t2,
             dds: (2.0 * sin - 2.0 * theta * cos - t2 * sin) / t3,
@@ -86,9 +84,20 @@ pub(crate) fn turn_coeffs(theta: f64) -> TurnCoeffs {
     }
 }
 
-/// `(sin θ, cos θ, S(θ), C(θ))` alone, for the transition (no derivatives): the same
-/// series below [`SERIES_LIMIT`]; above it `1 − cos θ` as `sin²θ / (1 + cos θ)` while
-/// `cos θ > 0` (no cancellation, and no third sine as in `2 sin²(θ/2)`), else directly.
+/// `1 − cos θ` without cancellation: `sin²θ / (1 + cos θ)` while `cos θ > 0`, directly
+/// otherwise (then `1 − cos θ ≥ 1`).
+#[inline]
+fn one_minus_cos(sin: f64, cos: f64) -> f64 {
+    if cos > 0.0 {
+        sin * sin / (1.0 + cos)
+    } else {
+        1.0 - cos
+    }
+}
+
+/// `(sin θ, cos θ, S(θ), C(θ))` alone, for the transition (no derivatives): the Taylor
+/// series below [`SERIES_LIMIT`] (truncation below 1e-16 relative), the closed forms with
+/// [`one_minus_cos`] above it.
 ///
 /// The values at `|θ|` are kept per thread for the next call: an IMM bank predicts the
 /// same turn models over the same interval many times per step (the 5 × 3 multi-IMM: ten
@@ -131,12 +140,7 @@ fn turn_sc_direct(theta: f64) -> [f64; 4] {
         let c = theta * (0.5 - u / 24.0 * (1.0 - u / 30.0 * (1.0 - u / 56.0 * (1.0 - u / 90.0))));
         [sin, cos, s, c]
     } else {
-        let one_minus_cos = if cos > 0.0 {
-            sin * sin / (1.0 + cos)
-        } else {
-            1.0 - cos
-        };
-        [sin, cos, sin / theta, one_minus_cos / theta]
+        [sin, cos, sin / theta, one_minus_cos(sin, cos) / theta]
     }
 }
 
@@ -146,7 +150,7 @@ mod tests {
 
     #[test]
     fn light_coefficients_equal_the_full_ones() {
-        // Same quantities by other evaluations (1 − cos θ two ways): a few ulps apart.
+        // `turn_coeffs` builds on `turn_sc_direct`; the cached `turn_sc` must agree with both.
         for theta in [
             0.0, 1e-9, -0.05, 0.0999, 0.1, 0.26, -0.26, 1.0, 1.6, -2.5, 3.1, 6.0, -20.0,
         ] {
