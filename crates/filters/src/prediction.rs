@@ -50,10 +50,14 @@ impl<const M: usize> Innovation<M> {
     #[must_use]
     #[inline]
     pub fn log_likelihood(&self) -> f64 {
-        -0.5 * (self.nis
-            + log_det_of_pivots(&self.s_pivots)
-            + M as f64 * (2.0 * std::f64::consts::PI).ln())
+        log_normal::<M>(self.nis, log_det_of_pivots(&self.s_pivots))
     }
+}
+
+/// `ln N(ν; 0, S) = −½ (d² + ln|S| + M ln 2π)` from `d² = νᵀS⁻¹ν` and `ln|S|`.
+#[inline]
+fn log_normal<const M: usize>(nis: f64, log_det_s: f64) -> f64 {
+    -0.5 * (nis + log_det_s + M as f64 * (2.0 * std::f64::consts::PI).ln())
 }
 
 impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
@@ -154,7 +158,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     #[must_use]
     #[inline]
     pub fn log_likelihood_from_nis(&self, nis: f64) -> f64 {
-        -0.5 * (nis + self.log_det_s() + M as f64 * (2.0 * std::f64::consts::PI).ln())
+        log_normal::<M>(nis, self.log_det_s())
     }
 
     /// The volume of the gate `νᵀ S⁻¹ ν ≤ γ`: `c_M γ^{M/2} |S|^{1/2}`.
