@@ -277,6 +277,38 @@ mod tests {
         );
     }
 
+    #[test]
+    fn out_of_range_selection_is_ignored() {
+        // A model declaring an index ≥ N must not be gathered with (no panic): the filter
+        // takes the general `P Hᵀ` path, so the result equals the plain model's.
+        struct BadSelection(Pos2);
+        impl MeasurementModel<4, 2> for BadSelection {
+            fn predict(&self, x: &Vector<4>) -> Vector<2> {
+                self.0.predict(x)
+            }
+            fn jacobian(&self, x: &Vector<4>) -> Matrix<2, 4> {
+                self.0.jacobian(x)
+            }
+            fn noise(&self, x: &Vector<4>) -> Matrix<2, 2> {
+                self.0.noise(x)
+            }
+            fn selection(&self) -> Option<[usize; 2]> {
+                Some([0, 9])
+            }
+        }
+        let r = Matrix::<2, 2>::new(2.0, 0.1, 0.1, 3.0);
+        let prior = Gaussian::new(
+            Vector::<4>::new(1.0, 0.5, -2.0, 0.1),
+            Matrix::<4, 4>::identity() * 4.0,
+        )
+        .unwrap();
+        let z = Vector::<2>::new(1.5, -1.0);
+        let kf = Kf::new(Cv2 { q: 0.5 });
+        let (a, _) = kf.update(&prior, &Pos2 { r }, &z).unwrap();
+        let (b, _) = kf.update(&prior, &BadSelection(Pos2 { r }), &z).unwrap();
+        assert_eq!(a, b);
+    }
+
     proptest::proptest! {
         #[test]
         fn selection_path_equals_general_path(
