@@ -70,6 +70,7 @@ impl CoordinatedTurn {
     }
 
     /// The per-axis DWNA block `σv² [[T⁴/4, T³/2], [T³/2, T²]]` of `Q = σv² Γ Γᵀ`.
+    #[inline]
     fn axis_noise(&self, dt: f64) -> Matrix<2, 2> {
         CvNoise::DiscreteWhiteAcceleration {
             sigma_a: self.sigma_v,
@@ -82,47 +83,56 @@ impl CoordinatedTurn {
 #[must_use]
 #[inline]
 pub fn ct_transition(omega: f64, dt: f64) -> Matrix<4, 4> {
+    let [f1, f3] = ct_columns(omega, dt);
+    Matrix::<4, 4>::from_data(nalgebra::ArrayStorage([
+        [1.0, 0.0, 0.0, 0.0],
+        f1,
+        [0.0, 0.0, 1.0, 0.0],
+        f3,
+    ]))
+}
+
+/// Columns 1 and 3 of [`ct_transition`] (columns 0 and 2 are `e₀` and `e₂`), as arrays the
+/// structured products use directly (a 4 × 4 matrix stored entry by entry and read back
+/// in pairs stalls on store forwarding).
+#[inline]
+fn ct_columns(omega: f64, dt: f64) -> [[f64; 4]; 2] {
     let (sin, cos, s, c) = turn_sc(omega * dt);
     let ts = dt * s;
     let tc = dt * c;
-    #[rustfmt::skip]
-    let f = Matrix::<4, 4>::new(
-        1.0, ts,  0.0, -tc,
-        0.0, cos, 0.0, -sin,
-        0.0, tc,  1.0, ts,
-        0.0, sin, 0.0, cos,
-    );
-    f
+    [[ts, cos, tc, sin], [-tc, -sin, ts, cos]]
+}
+
+/// `F m` for the CT transition with columns `f = [F₁, F₃]`: `e₀ m₀ + e₂ m₂ + F₁ m₁ + F₃ m₃`.
+#[inline(always)]
+fn ct_apply(f: &[[f64; 4]; 2], m: &[f64; 4]) -> [f64; 4] {
+    let mut out = [0.0; 4];
+    for (r, o) in out.iter_mut().enumerate() {
+        *o = f[0][r] * m[1] + f[1][r] * m[3];
+    }
+    out[0] += m[0];
+    out[2] += m[2];
+    out
 }
 
 /// `F P Fᵀ` for a CT transition `F` (columns 0 and 2 are the unit vectors `e₀`, `e₂`): column
 /// `c` of `F P` is `F₁ P(1, c) + F₃ P(3, c)` plus `P(0, c)` and `P(2, c)` in rows 0 and 2,
 /// and likewise for `(F P) Fᵀ`; about 64 multiply-adds instead of 128 for two full
-/// products. The lower triangle is mirrored (the exact result is symmetric).
+/// products. Only the lower triangle is meant: callers add to it and then mirror it (the
+/// exact result is symmetric).
 #[inline]
-fn ct_congruence(f: &Matrix<4, 4>, p: &Matrix<4, 4>) -> Matrix<4, 4> {
-    let f = &f.data.0;
+fn ct_congruence_lower(f: &[[f64; 4]; 2], p: &Matrix<4, 4>) -> Matrix<4, 4> {
     let p = &p.data.0;
-    let apply = |m: [f64; 4]| -> [f64; 4] {
-        // F m for a column m: e₀ m₀ + e₂ m₂ + F₁ m₁ + F₃ m₃.
-        let mut out = [0.0; 4];
-        for (r, o) in out.iter_mut().enumerate() {
-            *o = f[1][r] * m[1] + f[3][r] * m[3];
-        }
-        out[0] += m[0];
-        out[2] += m[2];
-        out
-    };
     // A = F P, column by column.
     let mut a = [[0.0; 4]; 4];
     for (ac, pc) in a.iter_mut().zip(p) {
-        *ac = apply(*pc);
+        *ac = ct_apply(f, pc);
     }
     // B = A Fᵀ: column j is Σ_k A_k F(j, k) = δ_{j0} A₀ + δ_{j2} A₂ + A₁ F(j, 1) + A₃ F(j, 3).
     let mut b = [[0.0; 4]; 4];
     for (j, bj) in b.iter_mut().enumerate() {
         for (r, v) in bj.iter_mut().enumerate() {
-            *v = a[1][r] * f[1][j] + a[3][r] * f[3][j];
+            *v = a[1][r] * f[0][j] + a[3][r] * f[1][j];
         }
         if j == 0 || j == 2 {
             for (v, &x) in bj.iter_mut().zip(&a[j]) {
@@ -130,14 +140,12 @@ fn ct_congruence(f: &Matrix<4, 4>, p: &Matrix<4, 4>) -> Matrix<4, 4> {
             }
         }
     }
-    let mut out = Matrix::<4, 4>::from_data(nalgebra::ArrayStorage(b));
-    argus_core_math::kernels::mirror_lower(&mut out);
-    out
+    Matrix::<4, 4>::from_data(nalgebra::ArrayStorage(b))
 }
 
 impl MotionModel<4> for CoordinatedTurn {
     fn propagate(&self, x: &Vector<4>, dt: f64) -> Vector<4> {
-        ct_transition(self.omega, dt) * x
+        Vector::<4>::from(ct_apply(&ct_columns(self.omega, dt), &x.data.0[0]))
     }
 
     fn jacobian(&self, _x: &Vector<4>, dt: f64) -> Matrix<4, 4> {
@@ -145,33 +153,40 @@ impl MotionModel<4> for CoordinatedTurn {
     }
 
     /// `F` (with its sine and cosine) formed once for the mean and the covariance.
+    #[inline(always)]
     fn propagate_with_covariance(
         &self,
         x: &Vector<4>,
         p: &Matrix<4, 4>,
         dt: f64,
     ) -> (Vector<4>, Matrix<4, 4>) {
-        let f = ct_transition(self.omega, dt);
-        (argus_core_math::kernels::mul(&f, x), ct_congruence(&f, p))
+        let f = ct_columns(self.omega, dt);
+        let mut cov = ct_congruence_lower(&f, p);
+        argus_core_math::kernels::mirror_lower(&mut cov);
+        (Vector::<4>::from(ct_apply(&f, &x.data.0[0])), cov)
     }
 
     /// `F` formed once; the DWNA noise added on the two diagonal blocks.
+    #[inline(always)]
     fn predict_moments(
         &self,
         x: &Vector<4>,
         p: &Matrix<4, 4>,
         dt: f64,
     ) -> (Vector<4>, Matrix<4, 4>) {
-        let (mean, mut cov) = self.propagate_with_covariance(x, p, dt);
+        let f = ct_columns(self.omega, dt);
+        let mut cov = ct_congruence_lower(&f, p);
+        // Onto the lower triangle, then mirrored (the mirror's stores last).
         let q = self.axis_noise(dt);
         for k in [0, 2] {
             for c in 0..2 {
-                for r in 0..2 {
+                for r in c..2 {
                     cov[(k + r, k + c)] += q[(r, c)];
                 }
             }
         }
-        (mean, cov)
+        argus_core_math::kernels::mirror_lower(&mut cov);
+        (Vector::<4>::from(ct_apply(&f, &x.data.0[0])), cov)
     }
 
     /// `Q = σv² Γ Γᵀ` (seed 000), independent of the state.

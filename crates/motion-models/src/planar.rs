@@ -71,6 +71,7 @@ impl MotionModel<4> for PlanarModel {
         }
     }
 
+    #[inline(always)]
     fn predict_moments(
         &self,
         x: &Vector<4>,
@@ -132,6 +133,7 @@ mod tests {
                 let q = m.process_noise(&x, dt);
                 let (_, moments) = m.predict_moments(&x, &p, dt);
                 assert!((moments - (full + q)).amax() < 1e-12 * (full + q).amax());
+                assert_eq!(moments, moments.transpose());
             }
         }
     }

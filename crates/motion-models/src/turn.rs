@@ -113,16 +113,17 @@ pub(crate) fn turn_sc(theta: f64) -> (f64, f64, f64, f64) {
     }
     let a = theta.abs();
     let key = a.to_bits();
-    let [sin, cos, s, c] = LAST.with(|last| {
-        let (k, v) = last.get();
-        if k == key {
-            v
-        } else {
-            let v = turn_sc_direct(a);
-            last.set((key, v));
-            v
-        }
-    });
+    // `get`/`set` on the thread-local cell, not a closure through `with`: the closure's
+    // call returned the values through memory written entry by entry and read back in
+    // pairs, a store-forwarding stall that cost about as much as the sine it saved.
+    let (k, cached) = LAST.get();
+    let [sin, cos, s, c] = if k == key {
+        cached
+    } else {
+        let v = turn_sc_direct(a);
+        LAST.set((key, v));
+        v
+    };
     if theta.is_sign_negative() {
         (-sin, cos, s, -c)
     } else {
