@@ -1,8 +1,8 @@
 //! A validated Gaussian density with stack-allocated mean and covariance.
 
 use crate::linalg::{
-    SYMMETRY_TOL, all_finite, asymmetry, check_finite_matrix, check_finite_vector,
-    is_positive_definite, symmetrize,
+    SYMMETRY_TOL, all_finite, asymmetry, bareiss_minors_positive, check_finite_matrix,
+    check_finite_vector, is_positive_definite, symmetrize,
 };
 use crate::{MathError, Matrix, SpdFactor, Vector};
 
@@ -62,18 +62,44 @@ impl<const N: usize> Gaussian<N> {
     /// [`MathError::NonFinite`] or [`MathError::NotPositiveDefinite`].
     #[inline(always)]
     pub fn from_lower_triangle(mean: Vector<N>, mut cov: Matrix<N, N>) -> Result<Self, MathError> {
-        check_finite_vector(&mean, "mean")?;
+        check_lower_triangle(&mean, &cov)?;
         crate::kernels::mirror_lower(&mut cov);
-        // The definiteness test reads the lower triangle and fails on non-finite entries
-        // too; only then is the cause named.
-        if !is_positive_definite(&cov) {
-            return Err(if all_finite(cov.as_slice()) {
-                MathError::NotPositiveDefinite { what: "covariance" }
-            } else {
-                MathError::NonFinite { what: "covariance" }
-            });
-        }
         Ok(Self { mean, cov })
+    }
+
+    /// [`Gaussian::from_lower_triangle`] into `self`, which is left unchanged on an error:
+    /// for a filter stage that replaces its estimate in place (no `Result` holding a whole
+    /// Gaussian is built and copied out).
+    ///
+    /// # Errors
+    /// As [`Gaussian::from_lower_triangle`].
+    #[inline(always)]
+    pub fn assign_lower_triangle(
+        &mut self,
+        mean: Vector<N>,
+        cov: Matrix<N, N>,
+    ) -> Result<(), MathError> {
+        check_lower_triangle(&mean, &cov)?;
+        // Mirrored straight into the estimate (no mirrored copy to be copied in).
+        self.mean = mean;
+        crate::kernels::mirror_lower_into(&cov, &mut self.cov);
+        Ok(())
+    }
+
+    /// [`Gaussian::mixture`] into `self`, which is left unchanged on an error.
+    ///
+    /// # Errors
+    /// As [`Gaussian::mixture`].
+    #[inline(always)]
+    pub fn assign_mixture<const K: usize>(
+        &mut self,
+        weights: &[f64; K],
+        parts: &[Self; K],
+    ) -> Result<(), MathError> {
+        let (mean, cov) = mixture_moments(weights, parts)?;
+        self.mean = mean;
+        self.cov = cov;
+        Ok(())
     }
 
     /// The moment-matched Gaussian of the mixture `Σ wₘ N(xₘ, Pₘ)`:
@@ -83,52 +109,18 @@ impl<const N: usize> Gaussian<N> {
     /// `P` is a positive combination of positive-definite matrices (every part is a
     /// constructed `Gaussian`) plus positive semi-definite spread terms, so it is positive
     /// definite by construction: only finiteness is checked (of the weights and the result),
-    /// not definiteness. The per-entry arithmetic is `Σ wₘ (Pₘ + dₘ dₘᵀ)` with whole
-    /// columns, so the result is exactly symmetric.
+    /// not definiteness. The lower triangle is computed entry by entry as
+    /// `Σ wₘ (Pₘ + dₘ dₘᵀ)` and mirrored, so the result is exactly symmetric.
     ///
     /// # Errors
     /// [`MathError::OutOfDomain`] when no weight is positive or a weight is not finite;
     /// [`MathError::NonFinite`] when the result is not finite (an overflow).
-    #[inline]
+    #[inline(always)]
     pub fn mixture<const K: usize>(
         weights: &[f64; K],
         parts: &[Self; K],
     ) -> Result<Self, MathError> {
-        if !all_finite(weights) || !weights.iter().any(|&w| w > 0.0) {
-            return Err(MathError::OutOfDomain {
-                what: "mixture weights",
-                value: weights.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-                domain: "finite, at least one positive",
-            });
-        }
-        let mut mean = [0.0; N];
-        for (&w, g) in weights.iter().zip(parts) {
-            if w > 0.0 {
-                for (m, x) in mean.iter_mut().zip(g.mean.iter()) {
-                    *m += x * w;
-                }
-            }
-        }
-        let mut cov = Matrix::<N, N>::zeros();
-        let c = &mut cov.data.0;
-        for (&w, g) in weights.iter().zip(parts) {
-            if w > 0.0 {
-                let mut d = [0.0; N];
-                for ((d, x), m) in d.iter_mut().zip(g.mean.iter()).zip(&mean) {
-                    *d = x - m;
-                }
-                // Column-major: p[b][a] is entry (a, b); d[a] d[b] = d[b] d[a], so the
-                // entries above the diagonal equal their mirrors.
-                for ((cb, pb), db) in c.iter_mut().zip(&g.cov.data.0).zip(&d) {
-                    for ((cab, pab), da) in cb.iter_mut().zip(pb).zip(&d) {
-                        *cab += (pab + da * db) * w;
-                    }
-                }
-            }
-        }
-        let mean = Vector::<N>::from(mean);
-        check_finite_vector(&mean, "mixture mean")?;
-        check_finite_matrix(&cov, "mixture covariance")?;
+        let (mean, cov) = mixture_moments(weights, parts)?;
         Ok(Self { mean, cov })
     }
 
@@ -172,6 +164,89 @@ impl<const N: usize> Gaussian<N> {
         self.factor()
             .map_or(f64::NEG_INFINITY, |f| f.log_density(&(x - self.mean)))
     }
+}
+
+/// The checks of [`Gaussian::from_lower_triangle`] on `mean` and the lower triangle of
+/// `cov` (the upper one is not read). The fast definiteness test (the minors) fails on
+/// non-finite entries too; the callers mirror afterwards. (Mirrored before the test, the
+/// upper triangle's entries were stored one by one and the copy into the result read them
+/// back in pairs: a store-forwarding stall on every filter step.)
+#[inline(always)]
+fn check_lower_triangle<const N: usize>(
+    mean: &Vector<N>,
+    cov: &Matrix<N, N>,
+) -> Result<(), MathError> {
+    check_finite_vector(mean, "mean")?;
+    if bareiss_minors_positive(cov) {
+        Ok(())
+    } else {
+        check_lower_triangle_exact(cov)
+    }
+}
+
+/// The rare path of [`check_lower_triangle`]: the minors were not all positive finite
+/// numbers (an indefinite or non-finite matrix, or minors out of `f64`'s range); the exact
+/// test decides and names the cause.
+#[cold]
+#[inline(never)]
+fn check_lower_triangle_exact<const N: usize>(cov: &Matrix<N, N>) -> Result<(), MathError> {
+    let mut full = *cov;
+    crate::kernels::mirror_lower(&mut full);
+    if is_positive_definite(&full) {
+        Ok(())
+    } else if all_finite(full.as_slice()) {
+        Err(MathError::NotPositiveDefinite { what: "covariance" })
+    } else {
+        Err(MathError::NonFinite { what: "covariance" })
+    }
+}
+
+/// The moments of [`Gaussian::mixture`].
+#[inline(always)]
+fn mixture_moments<const N: usize, const K: usize>(
+    weights: &[f64; K],
+    parts: &[Gaussian<N>; K],
+) -> Result<(Vector<N>, Matrix<N, N>), MathError> {
+    if !all_finite(weights) || !weights.iter().any(|&w| w > 0.0) {
+        return Err(MathError::OutOfDomain {
+            what: "mixture weights",
+            value: weights.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            domain: "finite, at least one positive",
+        });
+    }
+    let mut mean = [0.0; N];
+    for (&w, g) in weights.iter().zip(parts) {
+        if w > 0.0 {
+            for (m, x) in mean.iter_mut().zip(g.mean.iter()) {
+                *m += x * w;
+            }
+        }
+    }
+    let mut cov = Matrix::<N, N>::zeros();
+    let c = &mut cov.data.0;
+    for (&w, g) in weights.iter().zip(parts) {
+        if w > 0.0 {
+            let mut d = [0.0; N];
+            for ((d, x), m) in d.iter_mut().zip(g.mean.iter()).zip(&mean) {
+                *d = x - m;
+            }
+            // Column-major: p[b][a] is entry (a, b). The lower triangle (a ≥ b) only:
+            // every part is symmetric and d[a] d[b] = d[b] d[a], so the entries above
+            // the diagonal are the mirrors.
+            let p = &g.cov.data.0;
+            for b in 0..N {
+                for a in b..N {
+                    c[b][a] += (p[b][a] + d[a] * d[b]) * w;
+                }
+            }
+        }
+    }
+    let mean = Vector::<N>::from(mean);
+    check_finite_vector(&mean, "mixture mean")?;
+    // The upper triangle is still zero: this checks the lower one. Mirrored last.
+    check_finite_matrix(&cov, "mixture covariance")?;
+    crate::kernels::mirror_lower(&mut cov);
+    Ok((mean, cov))
 }
 
 #[cfg(test)]
@@ -269,6 +344,55 @@ mod tests {
         assert!(Gaussian::mixture(&[f64::NAN, 1.0], &[g, g]).is_err());
         let one = Gaussian::mixture(&[0.0, 1.0], &[g, g]).unwrap();
         assert_eq!(one, g);
+    }
+
+    #[test]
+    fn in_place_assignments_equal_the_constructors_and_keep_the_estimate_on_errors() {
+        // `assign_lower_triangle` and `assign_mixture` write what `from_lower_triangle` and
+        // `mixture` return, bit for bit (same arithmetic), and leave the target untouched
+        // when they fail.
+        let start = Gaussian::new(
+            Vector::<3>::new(1.0, -2.0, 0.5),
+            Matrix::<3, 3>::new(4.0, 1.0, 0.5, 1.0, 3.0, -0.2, 0.5, -0.2, 2.0),
+        )
+        .unwrap();
+        // Lower triangle of an SPD matrix, with a wrong upper triangle that must be ignored.
+        let lower = Matrix::<3, 3>::new(5.0, 9.0, 9.0, 0.3, 2.0, 9.0, -0.4, 0.1, 1.5);
+        let mean = Vector::<3>::new(0.1, 0.2, 0.3);
+        let mut g = start;
+        g.assign_lower_triangle(mean, lower).unwrap();
+        assert_eq!(g, Gaussian::from_lower_triangle(mean, lower).unwrap());
+        assert_eq!(*g.cov(), g.cov().transpose());
+        let mut h = start;
+        let indefinite = Matrix::<3, 3>::new(1.0, 0.0, 0.0, 2.0, 1.0, 0.0, 0.0, 0.0, 1.0);
+        assert!(matches!(
+            h.assign_lower_triangle(mean, indefinite),
+            Err(MathError::NotPositiveDefinite { .. })
+        ));
+        let mut nan = lower;
+        nan[(2, 1)] = f64::NAN;
+        assert!(matches!(
+            h.assign_lower_triangle(mean, nan),
+            Err(MathError::NonFinite { .. })
+        ));
+        assert!(matches!(
+            h.assign_lower_triangle(Vector::<3>::new(f64::INFINITY, 0.0, 0.0), lower),
+            Err(MathError::NonFinite { what: "mean" })
+        ));
+        assert_eq!(h, start);
+
+        let parts = [
+            start,
+            g,
+            Gaussian::from_lower_triangle(-mean, lower * 2.0).unwrap(),
+        ];
+        let w = [0.5, 0.3, 0.2];
+        let mut m = start;
+        m.assign_mixture(&w, &parts).unwrap();
+        assert_eq!(m, Gaussian::mixture(&w, &parts).unwrap());
+        let mut k = start;
+        assert!(k.assign_mixture(&[0.0, 0.0, 0.0], &parts).is_err());
+        assert_eq!(k, start);
     }
 
     #[test]

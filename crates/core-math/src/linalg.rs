@@ -83,7 +83,7 @@ pub fn is_positive_definite<const N: usize>(a: &Matrix<N, N>) -> bool {
 /// elimination on a copy of the lower triangle (`m[j][i]` is entry (i, j)); `true` when
 /// all are positive and finite. No early exit: fixed trip counts unroll for small `N`.
 #[inline]
-fn bareiss_minors_positive<const N: usize>(a: &Matrix<N, N>) -> bool {
+pub(crate) fn bareiss_minors_positive<const N: usize>(a: &Matrix<N, N>) -> bool {
     let mut m = a.data.0;
     let mut pivots = PivotTest::new();
     // After step j, m[c][r] (c, r > j) is the minor of rows 0..=j, r and columns 0..=j, c

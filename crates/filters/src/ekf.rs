@@ -4,7 +4,9 @@ use argus_core_math::{Gaussian, check_finite_matrix, check_finite_vector};
 use argus_motion_models::MotionModel;
 use argus_sensors::MeasurementModel;
 
-use crate::linearized::{checked_gaussian, first_order_measurement, linearized_predict};
+use crate::linearized::{
+    checked_gaussian, first_order_measurement, linearized_predict, linearized_predict_in_place,
+};
 use crate::second_order::second_order_terms;
 use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction, check_dt};
 
@@ -59,6 +61,12 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ekf<Mo> {
     #[allow(non_snake_case)]
     fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
         linearized_predict(&self.model, prior, dt)
+    }
+
+    /// [`GaussianFilter::predict`] written straight into `estimate`.
+    #[inline(always)]
+    fn predict_in_place(&self, estimate: &mut Gaussian<N>, dt: f64) -> Result<(), FilterError> {
+        linearized_predict_in_place(&self.model, estimate, dt)
     }
 
     /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.
@@ -219,6 +227,43 @@ mod tests {
             0.0, 1.0, 15.0, 16.0,
         );
         Gaussian::new(Vector::<4>::new(1000.0, -5.0, 2000.0, 8.0), p).unwrap()
+    }
+
+    /// `predict_in_place` / `update_in_place` against `predict` / `update` for one filter:
+    /// the same numbers bit for bit (the same arithmetic), and the estimate untouched when
+    /// the step fails (time going backwards, a NaN plot).
+    fn check_in_place<F: GaussianFilter<4>>(f: &F) {
+        let polar = Polar2 {
+            sigma_r: 30.0,
+            sigma_az: 0.002,
+        };
+        let z = Vector::<2>::new(2250.0, 1.1);
+        let prior = prior4();
+        let pred = f.predict(&prior, 2.0).unwrap();
+        let (post, innov) = f.update(&pred, &polar, &z).unwrap();
+        let mut g = prior;
+        f.predict_in_place(&mut g, 2.0).unwrap();
+        assert_eq!(g, pred);
+        let innov_in_place = f.update_in_place(&mut g, &polar, &z).unwrap();
+        assert_eq!(g, post);
+        assert_eq!(innov_in_place, innov);
+        let mut h = prior;
+        assert!(f.predict_in_place(&mut h, -1.0).is_err());
+        assert!(
+            f.update_in_place(&mut h, &polar, &Vector::<2>::new(f64::NAN, 1.0))
+                .is_err()
+        );
+        assert_eq!(h, prior);
+    }
+
+    #[test]
+    fn in_place_steps_equal_the_returning_ones() {
+        for form in [CovarianceForm::Joseph, CovarianceForm::Standard] {
+            check_in_place(&Kf::with_form(Cv2 { q: 0.5 }, form));
+            check_in_place(&Ekf::with_form(Cv2 { q: 0.5 }, form));
+        }
+        // The trait's default in-place methods (no override).
+        check_in_place(&crate::Ukf::new(Cv2 { q: 0.5 }, crate::UtParams::default()).unwrap());
     }
 
     #[test]

@@ -4,7 +4,7 @@ use argus_core_math::Gaussian;
 use argus_motion_models::LinearMotionModel;
 use argus_sensors::MeasurementModel;
 
-use crate::linearized::{first_order_measurement, linearized_predict};
+use crate::linearized::{first_order_measurement, linearized_predict, linearized_predict_in_place};
 use crate::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction};
 
 /// The Kalman filter on a linear motion model.
@@ -97,14 +97,22 @@ impl<const N: usize, Mo: LinearMotionModel<N>> GaussianFilter<N> for Kf<Mo> {
     /// [`FilterError::Math`] when `F`, `Q` or the result is non-finite or `P⁻` is
     /// not positive definite.
     #[allow(non_snake_case)]
+    #[inline(always)]
     fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
         linearized_predict(&self.model, prior, dt)
+    }
+
+    /// [`GaussianFilter::predict`] written straight into `estimate`.
+    #[inline(always)]
+    fn predict_in_place(&self, estimate: &mut Gaussian<N>, dt: f64) -> Result<(), FilterError> {
+        linearized_predict_in_place(&self.model, estimate, dt)
     }
 
     /// `ẑ = h(x⁻)`, `H = ∂h/∂x(x⁻)`, `S = H P⁻ Hᵀ + R`, `P_xz = P⁻ Hᵀ`.
     ///
     /// # Errors
     /// [`FilterError::Math`] when a value is non-finite or `S` is not positive definite.
+    #[inline(always)]
     fn predict_measurement<const M: usize, Me: MeasurementModel<N, M>>(
         &self,
         predicted: &Gaussian<N>,

@@ -53,6 +53,18 @@ pub trait GaussianFilter<const N: usize> {
     /// non-finite or non-positive-definite result is reported, never returned.
     fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError>;
 
+    /// [`GaussianFilter::predict`] in place: `estimate` becomes the prediction, and is left
+    /// unchanged on an error. The filters of this crate that can write their result
+    /// straight into `estimate` do (no `Result` holding a whole Gaussian is copied out).
+    ///
+    /// # Errors
+    /// As [`GaussianFilter::predict`].
+    #[inline(always)]
+    fn predict_in_place(&self, estimate: &mut Gaussian<N>, dt: f64) -> Result<(), FilterError> {
+        *estimate = self.predict(estimate, dt)?;
+        Ok(())
+    }
+
     /// Predicts the measurement of `meas` from the predicted state: `ẑ`, `S`, its
     /// factor, the cross covariance and the gain.
     ///
@@ -69,6 +81,7 @@ pub trait GaussianFilter<const N: usize> {
     ///
     /// # Errors
     /// As [`GaussianFilter::predict_measurement`], and [`FilterError::Math`] for a non-finite `z`.
+    #[inline(always)]
     fn update<const M: usize, Me: MeasurementModel<N, M>>(
         &self,
         predicted: &Gaussian<N>,
@@ -79,5 +92,23 @@ pub trait GaussianFilter<const N: usize> {
         let innov = mp.innovation(meas, z)?;
         let post = mp.update(predicted, &innov.residual)?;
         Ok((post, innov))
+    }
+
+    /// [`GaussianFilter::update`] in place: `estimate` (the prediction) becomes the
+    /// posterior, and is left unchanged on an error; returns the innovation.
+    ///
+    /// # Errors
+    /// As [`GaussianFilter::update`].
+    #[inline(always)]
+    fn update_in_place<const M: usize, Me: MeasurementModel<N, M>>(
+        &self,
+        estimate: &mut Gaussian<N>,
+        meas: &Me,
+        z: &Vector<M>,
+    ) -> Result<Innovation<M>, FilterError> {
+        let mp = self.predict_measurement(estimate, meas)?;
+        let innov = mp.innovation(meas, z)?;
+        mp.update_in_place(estimate, &innov.residual)?;
+        Ok(innov)
     }
 }

@@ -20,7 +20,26 @@ pub(crate) fn checked_gaussian<const N: usize>(
     // `from_lower_triangle` checks the mean and tells a non-finite covariance from a
     // non-positive-definite one. Every filter's covariance is symmetric by construction;
     // its lower triangle is kept.
-    Gaussian::from_lower_triangle(mean, cov).map_err(|e| match e {
+    Gaussian::from_lower_triangle(mean, cov).map_err(|e| name_stage(e, what_mean, what_cov))
+}
+
+/// [`checked_gaussian`] into `estimate`, which is left unchanged on an error.
+#[inline(always)]
+pub(crate) fn assign_checked<const N: usize>(
+    estimate: &mut Gaussian<N>,
+    mean: Vector<N>,
+    cov: Matrix<N, N>,
+    what_mean: &'static str,
+    what_cov: &'static str,
+) -> Result<(), FilterError> {
+    estimate
+        .assign_lower_triangle(mean, cov)
+        .map_err(|e| name_stage(e, what_mean, what_cov))
+}
+
+/// A Gaussian's construction error renamed for the filter stage that produced it.
+fn name_stage(e: MathError, what_mean: &'static str, what_cov: &'static str) -> FilterError {
+    match e {
         MathError::NotPositiveDefinite { .. } => {
             FilterError::Math(MathError::NotPositiveDefinite { what: what_cov })
         }
@@ -29,14 +48,14 @@ pub(crate) fn checked_gaussian<const N: usize>(
         }
         MathError::NonFinite { .. } => FilterError::Math(MathError::NonFinite { what: what_cov }),
         other => FilterError::Math(other),
-    })
+    }
 }
 
 /// The linearised prediction `x⁻ = f(x, dt)`, `P⁻ = F P Fᵀ + Q` of the KF and the EKF,
 /// from the motion model's [`MotionModel::predict_moments`] (which exploits a structured
 /// `F` and `Q`). A non-finite `F` or `Q` shows as a non-finite predicted covariance; only
 /// then is `Q` examined, to name it as the cause.
-#[inline]
+#[inline(always)]
 pub(crate) fn linearized_predict<const N: usize, Mo: MotionModel<N>>(
     model: &Mo,
     prior: &Gaussian<N>,
@@ -45,11 +64,43 @@ pub(crate) fn linearized_predict<const N: usize, Mo: MotionModel<N>>(
     check_dt(dt)?;
     let x = prior.mean();
     let (mean, cov) = model.predict_moments(x, prior.cov(), dt);
-    checked_gaussian(mean, cov, "predicted mean", "predicted covariance").map_err(|e| {
-        check_finite_matrix(&model.process_noise(x, dt), "process noise Q")
-            .err()
-            .map_or(e, FilterError::Math)
-    })
+    checked_gaussian(mean, cov, "predicted mean", "predicted covariance")
+        .map_err(|e| name_process_noise(model, x, dt, e))
+}
+
+/// [`linearized_predict`] in place: `estimate` becomes the prediction, and is left
+/// unchanged on an error.
+#[inline(always)]
+pub(crate) fn linearized_predict_in_place<const N: usize, Mo: MotionModel<N>>(
+    model: &Mo,
+    estimate: &mut Gaussian<N>,
+    dt: f64,
+) -> Result<(), FilterError> {
+    check_dt(dt)?;
+    let x = *estimate.mean();
+    let (mean, cov) = model.predict_moments(&x, estimate.cov(), dt);
+    assign_checked(
+        estimate,
+        mean,
+        cov,
+        "predicted mean",
+        "predicted covariance",
+    )
+    .map_err(|e| name_process_noise(model, &x, dt, e))
+}
+
+/// A failed prediction's error, or a non-finite `Q` named as its cause (examined only
+/// when the prediction failed).
+#[cold]
+fn name_process_noise<const N: usize, Mo: MotionModel<N>>(
+    model: &Mo,
+    x: &Vector<N>,
+    dt: f64,
+    e: FilterError,
+) -> FilterError {
+    check_finite_matrix(&model.process_noise(x, dt), "process noise Q")
+        .err()
+        .map_or(e, FilterError::Math)
 }
 
 /// The first-order measurement prediction at the predicted mean:

@@ -196,16 +196,47 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
     ///
     /// # Errors
     /// [`FilterError::Math`] when the posterior is non-finite or not positive definite.
-    #[inline]
+    #[inline(always)]
     pub fn update(
         &self,
         predicted: &Gaussian<N>,
         residual: &Vector<M>,
     ) -> Result<Gaussian<N>, FilterError> {
+        let (mean, cov) = self.posterior_moments(predicted, residual)?;
+        crate::linearized::checked_gaussian(mean, cov, "posterior mean", "posterior covariance")
+    }
+
+    /// [`MeasurementPrediction::update`] in place: `estimate` (the prediction this was
+    /// computed from) becomes the posterior, and is left unchanged on an error.
+    ///
+    /// # Errors
+    /// As [`MeasurementPrediction::update`].
+    #[inline(always)]
+    pub fn update_in_place(
+        &self,
+        estimate: &mut Gaussian<N>,
+        residual: &Vector<M>,
+    ) -> Result<(), FilterError> {
+        let (mean, cov) = self.posterior_moments(estimate, residual)?;
+        crate::linearized::assign_checked(
+            estimate,
+            mean,
+            cov,
+            "posterior mean",
+            "posterior covariance",
+        )
+    }
+
+    /// `x = x⁻ + K ν` and the posterior covariance (its lower triangle is what counts).
+    #[inline(always)]
+    fn posterior_moments(
+        &self,
+        predicted: &Gaussian<N>,
+        residual: &Vector<M>,
+    ) -> Result<(Vector<N>, Matrix<N, N>), FilterError> {
         check_finite_vector(residual, "residual")?;
         let mean = predicted.mean() + kernels::mul(&self.gain, residual);
-        let cov = self.posterior_cov(predicted.cov());
-        crate::linearized::checked_gaussian(mean, cov, "posterior mean", "posterior covariance")
+        Ok((mean, self.posterior_cov(predicted.cov())))
     }
 
     /// The posterior covariance of an update with a plot (independent of the residual).

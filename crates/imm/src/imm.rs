@@ -297,8 +297,9 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
             }
             if c >= TINY {
                 *cl = c;
+                let inv = 1.0 / c;
                 for wi in &mut w {
-                    *wi /= c;
+                    *wi *= inv;
                 }
             } else {
                 *lc = self.mixing_in_logs(&est.mu, j, &mut w);
@@ -311,7 +312,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
             // The mixed covariance Σᵢ μᵢ|ⱼ (Pᵢ + dᵢ dᵢᵀ): a convex combination of
             // positive-definite matrices plus positive-semidefinite spread terms (checked
             // for finiteness).
-            *out = moment_match(&w, &est.modes)?;
+            out.assign_mixture(&w, &est.modes)?;
         }
         Ok(cbar)
     }
@@ -363,9 +364,12 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         check_dt(dt).map_err(|_| ImmError::InvalidInterval { dt })?;
         let cbar = self.mix_into(est, out)?;
         for (j, (f, g)) in self.filters.iter().zip(out.iter_mut()).enumerate() {
-            *g = f
-                .predict(g, dt)
-                .map_err(|source| ImmError::Filter { mode: j, source })?;
+            // In place, and the error mapped only on the error path: a `Result` holding the
+            // Gaussian (and `map_err` moving it between two `Result` layouts) costs copies
+            // that read freshly stored values back in other widths, which stalls.
+            if let Err(source) = f.predict_in_place(g, dt) {
+                return Err(ImmError::Filter { mode: j, source });
+            }
         }
         Ok(cbar)
     }
@@ -387,11 +391,10 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
             .zip(ll.iter_mut())
             .enumerate()
         {
-            let (post, innov) = f
-                .update(g, meas, z)
-                .map_err(|source| ImmError::Filter { mode: j, source })?;
-            *g = post;
-            *l = innov.log_likelihood();
+            match f.update_in_place(g, meas, z) {
+                Ok(innov) => *l = innov.log_likelihood(),
+                Err(source) => return Err(ImmError::Filter { mode: j, source }),
+            }
         }
         Ok(ll)
     }
@@ -431,8 +434,9 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
             return Err(ImmError::NoLikelihood { what: "IMM modes" });
         }
         let mu = &mut est.mu;
+        let inv_sum = 1.0 / sum;
         for (j, ((p, lg), wj)) in mu.lin.iter_mut().zip(mu.log.iter_mut()).zip(&w).enumerate() {
-            *p = wj / sum;
+            *p = wj * inv_sum;
             *lg = if *p >= TINY {
                 0.0
             } else {
