@@ -59,6 +59,7 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ekf<Mo> {
     /// [`FilterError::InvalidInterval`] for a bad `dt`; [`FilterError::Math`] for a
     /// non-finite value or a `P⁻` that is not positive definite.
     #[allow(non_snake_case)]
+    #[inline(always)]
     fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
         linearized_predict(&self.model, prior, dt)
     }
@@ -73,6 +74,7 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ekf<Mo> {
     ///
     /// # Errors
     /// [`FilterError::Math`] when a value is non-finite or `S` is not positive definite.
+    #[inline(always)]
     fn predict_measurement<const M: usize, Me: MeasurementModel<N, M>>(
         &self,
         predicted: &Gaussian<N>,
