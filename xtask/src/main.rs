@@ -33,8 +33,14 @@ fn main() -> ExitCode {
     }
 }
 
+/// The workspace of the checkout being run: `cargo run` sets `CARGO_MANIFEST_DIR` at run time
+/// too, and that is the one to trust. The compile-time value is only the fallback: with a
+/// target directory shared by two checkouts, cargo can reuse an xtask binary built from the
+/// other one (its sources are the same), which would then test and bench that other tree.
 fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    let manifest_dir = std::env::var_os("CARGO_MANIFEST_DIR")
+        .map_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")), PathBuf::from);
+    manifest_dir
         .parent()
         .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
 }
