@@ -69,6 +69,31 @@ impl CoordinatedTurn {
         self.sigma_v
     }
 
+    /// `(F x, F P Fᵀ)` with `F` formed once, plus `axis_noise` on the two diagonal blocks
+    /// when given: added to the lower triangle, then mirrored once (the mirror's stores last).
+    #[inline(always)]
+    fn moments(
+        &self,
+        x: &Vector<4>,
+        p: &Matrix<4, 4>,
+        dt: f64,
+        axis_noise: Option<Matrix<2, 2>>,
+    ) -> (Vector<4>, Matrix<4, 4>) {
+        let f = ct_columns(self.omega, dt);
+        let mut cov = ct_congruence_lower(&f, p);
+        if let Some(q) = axis_noise {
+            for k in [0, 2] {
+                for c in 0..2 {
+                    for r in c..2 {
+                        cov[(k + r, k + c)] += q[(r, c)];
+                    }
+                }
+            }
+        }
+        argus_core_math::kernels::mirror_lower(&mut cov);
+        (Vector::<4>::from(ct_apply(&f, &x.data.0[0])), cov)
+    }
+
     /// The per-axis DWNA block `σv² [[T⁴/4, T³/2], [T³/2, T²]]` of `Q = σv² Γ Γᵀ`.
     #[inline]
     fn axis_noise(&self, dt: f64) -> Matrix<2, 2> {
@@ -119,7 +144,8 @@ fn ct_apply(f: &[[f64; 4]; 2], m: &[f64; 4]) -> [f64; 4] {
 /// `c` of `F P` is `F₁ P(1, c) + F₃ P(3, c)` plus `P(0, c)` and `P(2, c)` in rows 0 and 2,
 /// and likewise for `(F P) Fᵀ`; about 64 multiply-adds instead of 128 for two full
 /// products. Only the lower triangle is meant: callers add to it and then mirror it (the
-/// exact result is symmetric).
+/// exact result is symmetric). `B` is still computed in whole columns: restricted to the
+/// triangle it took more instructions, not fewer (the columns vectorise in pairs).
 #[inline]
 fn ct_congruence_lower(f: &[[f64; 4]; 2], p: &Matrix<4, 4>) -> Matrix<4, 4> {
     let p = &p.data.0;
@@ -160,10 +186,7 @@ impl MotionModel<4> for CoordinatedTurn {
         p: &Matrix<4, 4>,
         dt: f64,
     ) -> (Vector<4>, Matrix<4, 4>) {
-        let f = ct_columns(self.omega, dt);
-        let mut cov = ct_congruence_lower(&f, p);
-        argus_core_math::kernels::mirror_lower(&mut cov);
-        (Vector::<4>::from(ct_apply(&f, &x.data.0[0])), cov)
+        self.moments(x, p, dt, None)
     }
 
     /// `F` formed once; the DWNA noise added on the two diagonal blocks.
@@ -174,19 +197,7 @@ impl MotionModel<4> for CoordinatedTurn {
         p: &Matrix<4, 4>,
         dt: f64,
     ) -> (Vector<4>, Matrix<4, 4>) {
-        let f = ct_columns(self.omega, dt);
-        let mut cov = ct_congruence_lower(&f, p);
-        // Onto the lower triangle, then mirrored (the mirror's stores last).
-        let q = self.axis_noise(dt);
-        for k in [0, 2] {
-            for c in 0..2 {
-                for r in c..2 {
-                    cov[(k + r, k + c)] += q[(r, c)];
-                }
-            }
-        }
-        argus_core_math::kernels::mirror_lower(&mut cov);
-        (Vector::<4>::from(ct_apply(&f, &x.data.0[0])), cov)
+        self.moments(x, p, dt, Some(self.axis_noise(dt)))
     }
 
     /// `Q = σv² Γ Γᵀ` (seed 000), independent of the state.
