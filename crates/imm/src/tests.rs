@@ -83,6 +83,72 @@ fn mode_probabilities_and_mixing_match_a_hand_computation() {
 }
 
 #[test]
+fn linear_and_log_space_updates_agree() {
+    // The same cycle through `step` (linear μ̄) and `predict` + `update` (ln μ̄, eq (6)
+    // in log space): the probabilities and ln Λ agree to round-off (1e-12: a few dozen
+    // operations on numbers of order one).
+    let imm = Imm::new(
+        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        MarkovMatrix::new([[0.9, 0.1], [0.2, 0.8]]).unwrap(),
+    )
+    .unwrap();
+    let est = ImmEstimate::from_common(start(), [0.7, 0.3]).unwrap();
+    let z = Vector::<2>::new(160.0, -20.0);
+    let a = imm.step(&est, 5.0, &meas(40.0), &z).unwrap();
+    let b = imm
+        .update(&imm.predict(&est, 5.0).unwrap(), &meas(40.0), &z)
+        .unwrap();
+    assert!((a.log_likelihood - b.log_likelihood).abs() < 1e-12);
+    let (pa, pb) = (
+        a.estimate.mode_probabilities(),
+        b.estimate.mode_probabilities(),
+    );
+    let (la, lb) = (
+        a.estimate.log_mode_probabilities(),
+        b.estimate.log_mode_probabilities(),
+    );
+    for j in 0..2 {
+        assert!((pa[j] - pb[j]).abs() < 1e-12);
+        assert!((la[j] - lb[j]).abs() < 1e-12);
+        assert!((la[j] - pa[j].ln()).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn a_mode_below_f64_keeps_its_log_probability_through_cycles() {
+    // Mode 0 explains a plot 2 km off with R = 1 m² far worse than mode 1 (μ₀ ≈ e^{-883},
+    // below the smallest f64, e^{-745}): μ₀ is 0.0 and lives as ln μ₀ only. With Π = I
+    // the next cycle's ln μ̄₀ = ln μ₀ is below f64 too, so the update runs in log space;
+    // eq (6) must still hold for the logarithms: ln μ₀' = ln μ₀ + ln Λ₀ − ln Λ (relative
+    // 1e-12: round-off of a few additions of numbers up to ~1e3).
+    let mix = Imm::new(
+        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        MarkovMatrix::new([[0.5, 0.5], [0.5, 0.5]]).unwrap(),
+    )
+    .unwrap();
+    let est = ImmEstimate::from_common(start(), [0.5, 0.5]).unwrap();
+    let first = mix
+        .step(&est, 1.0, &meas(1.0), &Vector::<2>::new(2100.0, -50.0))
+        .unwrap()
+        .estimate;
+    let l0 = first.log_mode_probabilities()[0];
+    assert!(first.mode_probabilities()[0] == 0.0 && l0.is_finite() && l0 < -745.0);
+    let stay = Imm::new(
+        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        MarkovMatrix::new([[1.0, 0.0], [0.0, 1.0]]).unwrap(),
+    )
+    .unwrap();
+    let z = Vector::<2>::new(2110.0, -40.0);
+    let second = stay.step(&first, 1.0, &meas(100.0), &z).unwrap();
+    let l0_new = second.estimate.log_mode_probabilities()[0];
+    let expected = l0 + second.mode_log_likelihoods[0] - second.log_likelihood;
+    assert!(l0_new.is_finite());
+    assert!((l0_new - expected).abs() < 1e-12 * expected.abs());
+    let mu = second.estimate.mode_probabilities();
+    assert!((mu.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+}
+
+#[test]
 fn tiny_likelihoods_do_not_underflow() {
     // A plot 2 km off with R = 1 m²: every likelihood is about e^{-2e6/2}, which is 0.0 in
     // f64; linear-space normalisation would give 0/0. In log space the probabilities stay
