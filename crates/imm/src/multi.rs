@@ -270,11 +270,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         conversion: &C,
     ) -> Result<MultiImmUpdate<N, R, K>, ImmError> {
         // One buffer for the result, updated in place (no copies of the K estimates).
-        let mut out = MultiImmUpdate {
-            estimate: *est,
-            hypotheses: self.hypotheses(est),
-            log_likelihoods: [f64::NEG_INFINITY; K],
-        };
+        let mut out = self.start_update(est);
         out.log_likelihoods = self.imm.step_hypotheses(
             &est.imms,
             &mut out.estimate.imms,
@@ -301,11 +297,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         conversion: &C,
     ) -> Result<MultiImmUpdate<N, R, K>, ImmError> {
         let cbar = predicted.imms.map(|e| *e.weights());
-        let mut out = MultiImmUpdate {
-            estimate: *predicted,
-            hypotheses: self.hypotheses(predicted),
-            log_likelihoods: [f64::NEG_INFINITY; K],
-        };
+        let mut out = self.start_update(predicted);
         out.log_likelihoods = self.imm.update_hypotheses(
             &mut out.estimate.imms,
             &cbar,
@@ -315,6 +307,16 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         )?;
         self.finish(&mut out)?;
         Ok(out)
+    }
+
+    /// The buffer `step` and `update` fill: `est` (to be updated in place), this step's
+    /// hypotheses, and no likelihoods yet.
+    fn start_update(&self, est: &MultiImmEstimate<N, R, K>) -> MultiImmUpdate<N, R, K> {
+        MultiImmUpdate {
+            estimate: *est,
+            hypotheses: self.hypotheses(est),
+            log_likelihoods: [f64::NEG_INFINITY; K],
+        }
     }
 
     /// Steps 3–5 in place on `out`, which holds the updated IMMs, their likelihoods, this
