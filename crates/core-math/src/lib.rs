@@ -1,10 +1,10 @@
 //! Core mathematics for Argus: fixed-size Gaussians, Cholesky-based solves,
 //! Gaussian log-likelihoods, Joseph-form updates, chi-square quantiles and
-//! run-time-sized algebra through [`faer`].
+//! run-time-sized algebra through `faer` (the `dynamic` feature, off by default).
 //!
 //! Small per-track algebra uses nalgebra's const-generic stack types
 //! ([`Vector`], [`Matrix`]); nothing here allocates except the run-time-sized
-//! [`dynamic`] module.
+//! `dynamic` module (feature `dynamic`).
 //!
 //! # Example
 //! ```
@@ -17,6 +17,7 @@
 //! ```
 
 mod chi2;
+#[cfg(feature = "dynamic")]
 pub mod dynamic;
 mod error;
 mod gaussian;
@@ -34,7 +35,8 @@ pub use linalg::{
     symmetrize,
 };
 
-/// Re-export of the faer version used for run-time-sized algebra.
+/// Re-export of the faer version used for run-time-sized algebra (feature `dynamic`).
+#[cfg(feature = "dynamic")]
 pub use faer;
 /// Re-export of the nalgebra version Argus is built on, so users name the same types.
 pub use nalgebra;
