@@ -12,11 +12,8 @@
 //!   seed 001 ([`glrt`], [`mras`], [`maneuver`]).
 //! - One error type, [`AdaptiveError`].
 //!
-//! # Features
-//! - `sim` (off by default): the Monte Carlo experiments — `decoupled_scenario`
-//!   ("rbs-landing", seed 003), `maneuver::maneuver_1d` and `maneuver::drag_bearing`
-//!   (seed 001). It brings `rand`, `rand_distr` and `rand_chacha`; the filters
-//!   themselves do not need it.
+//! The Monte Carlo experiments that run these filters ("rbs-landing" of seed 003,
+//! "maneuver-1d" and "drag-bearing" of seed 001) are in `argus-scenarios`.
 //!
 //! State layout: `[x, vx, y, vy, z, vz]`, SI units, azimuth from +x counter-clockwise.
 //!
@@ -55,8 +52,6 @@ mod adaptive_r;
 mod coupled;
 mod decoupled;
 mod decoupled_plot;
-#[cfg(feature = "sim")]
-pub mod decoupled_scenario;
 mod error;
 
 pub use adaptive_r::{

@@ -24,11 +24,6 @@
 //! - Lee & Kim (1987), seed 001, sections 3.2 and 4, eqs 3-11, 3-12, 4-3 to 4-7.
 //! - Willsky & Jones (1976), GLR detection of jumps in linear systems.
 
-#[cfg(feature = "sim")]
-pub mod drag_bearing;
-#[cfg(feature = "sim")]
-pub mod maneuver_1d;
-
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Innovation, check_dt};
 use argus_motion_models::MotionModel;

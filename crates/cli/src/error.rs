@@ -2,6 +2,8 @@
 
 use std::path::PathBuf;
 
+use argus_scenarios::{ParamProblem, ScenarioError};
+
 /// Where a bad value sits in an input file.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct Location {
@@ -68,18 +70,12 @@ pub(crate) enum CliError {
     /// An IMM or multi-IMM rejected a value.
     #[error("imm: {0}")]
     Imm(#[from] argus_imm::ImmError),
-    /// Gating or data association rejected a value.
-    #[error("association: {0}")]
-    Association(#[from] argus_association::AssociationError),
-    /// Bias estimation rejected a value.
-    #[error("registration: {0}")]
-    Registration(#[from] argus_registration::RegistrationError),
-    /// The adaptive-R decoupled filter rejected a value.
-    #[error("adaptive filter: {0}")]
-    Adaptive(#[from] argus_adaptive::AdaptiveError),
     /// The multi-target tracker rejected a configuration or a plot.
     #[error("tracker: {0}")]
     Tracker(#[from] argus_tracker::TrackerError),
+    /// A scenario failed (a bad `--set` value is printed the way the command spells it).
+    #[error("{}", scenario_message(.0))]
+    Scenario(ScenarioError),
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {
@@ -88,6 +84,56 @@ pub(crate) enum CliError {
         /// What went wrong.
         message: String,
     },
+}
+
+impl From<ScenarioError> for CliError {
+    /// A record that does not parse is an input error at its file and line; every other
+    /// scenario error is kept as it is.
+    fn from(e: ScenarioError) -> Self {
+        match e {
+            ScenarioError::Record {
+                file,
+                line,
+                message,
+            } => Self::input(
+                &file,
+                Some(line),
+                Some("record"),
+                format!("not a record of this scenario: {message}"),
+            ),
+            e => Self::Scenario(e),
+        }
+    }
+}
+
+/// A scenario error as the command prints it: parameter errors name the `--set` setting.
+fn scenario_message(e: &ScenarioError) -> String {
+    let ScenarioError::Param { key: k, problem } = e else {
+        return e.to_string();
+    };
+    match problem {
+        ParamProblem::Syntax => format!("--set {k}: expected key=value"),
+        ParamProblem::Unknown { known } => {
+            format!("--set {k}: unknown parameter (known: {})", known.join(", "))
+        }
+        ParamProblem::NotANumber { value, item } => {
+            format!("--set {k}={value}: {item:?} is not a number")
+        }
+        ParamProblem::OutOfRange {
+            value,
+            item,
+            min,
+            max,
+            help,
+        } => format!("--set {k}={value}: {item} must lie in [{min}, {max}] ({help})"),
+        ParamProblem::List { len } => {
+            format!("--set {k}: takes one value here, got a list of {len}")
+        }
+        ParamProblem::Conflict { value, reason } => format!("--set {k}={value} {reason}"),
+        ParamProblem::Rejected { reason } => format!("--set {k}: {reason}"),
+        ParamProblem::Undeclared => format!("parameter {k} is not declared"),
+        _ => e.to_string(),
+    }
 }
 
 impl CliError {

@@ -1,36 +1,28 @@
 //! The estimators the command builds from the foundation crates: Kalman filters on the
 //! 2-D and 3-D constant-velocity models (DWNA noise) with converted plots, EKFs on polar
 //! and spherical plots, the unbiased conversions, one predict + update step, and the IMM of
-//! a configuration (fixed-rate CT and CV modes).
+//! a configuration (fixed-rate CT and CV modes). The 2-D KF, the polar conversion and the
+//! step are the scenarios' (`argus_scenarios::estimator`).
 
-use argus_core_math::{Gaussian, Matrix, Vector};
-use argus_filters::{Ekf, GaussianFilter, Innovation, Kf};
+use argus_core_math::{Matrix, Vector};
+use argus_filters::{Ekf, Kf};
 use argus_imm::{Imm, ImmError, MarkovMatrix};
 use argus_motion_models::{Cv2D, Cv3D, PlanarModel};
 use argus_sensors::{
-    CartesianPosition, ConversionMethod, MeasurementModel, Polar2D, RadarNoise, Spherical3D,
-    convert_polar, convert_spherical,
+    CartesianPosition, ConversionMethod, Polar2D, RadarNoise, Spherical3D, convert_spherical,
 };
 
 use crate::error::CliError;
 
-/// KF on the 2-D CV model `[x, vx, y, vy]`, `Q = σ² Γ Γᵀ` (seed 000).
-pub(crate) type CvKf = Kf<Cv2D>;
-/// EKF on the same model (for polar plots).
+pub(crate) use argus_scenarios::estimator::{cv_kf, position, step, unbiased};
+
+/// EKF on the 2-D CV model (for polar plots).
 pub(crate) type CvEkf = Ekf<Cv2D>;
 
-/// A KF on a 2-D CV model with white-acceleration σ `sigma_a` (m/s²).
+/// An EKF on a 2-D CV model with white-acceleration σ `sigma_a` (m/s²).
 ///
 /// # Errors
 /// The model's error for a negative or non-finite σ.
-pub(crate) fn cv_kf(sigma_a: f64) -> Result<CvKf, CliError> {
-    Ok(Kf::new(Cv2D::discrete(sigma_a)?))
-}
-
-/// An EKF on a 2-D CV model.
-///
-/// # Errors
-/// As [`cv_kf`].
 pub(crate) fn cv_ekf(sigma_a: f64) -> Result<CvEkf, CliError> {
     Ok(Ekf::new(Cv2D::discrete(sigma_a)?))
 }
@@ -97,35 +89,6 @@ pub(crate) fn spherical(sensor: [f64; 3], sigmas: [f64; 3]) -> Result<Spherical3
     )?)
 }
 
-/// The unbiased converted measurement of a polar plot (relative to its sensor) and its
-/// covariance (Mo Longbin et al. 1998; Bar-Shalom, Li & Kirubarajan 2001 §10.4.3).
-///
-/// # Errors
-/// The sensor crate's error for a non-positive range or a bad σ.
-pub(crate) fn unbiased(
-    range: f64,
-    azimuth: f64,
-    sigma_r: f64,
-    sigma_az: f64,
-) -> Result<(Vector<2>, Matrix<2, 2>), CliError> {
-    let c = convert_polar(
-        range,
-        azimuth,
-        sigma_r,
-        sigma_az,
-        ConversionMethod::Unbiased,
-    )?;
-    Ok((c.position, c.covariance))
-}
-
-/// Position measurement `(x, y)` of `[x, vx, y, vy]` with covariance `r`.
-///
-/// # Errors
-/// The sensor crate's error for a covariance that is not SPD.
-pub(crate) fn position(r: Matrix<2, 2>) -> Result<CartesianPosition<4, 2>, CliError> {
-    Ok(CartesianPosition::<4, 2>::cv(r)?)
-}
-
 /// Polar radar at `sensor` with constant σ (range m, azimuth rad).
 ///
 /// # Errors
@@ -135,30 +98,6 @@ pub(crate) fn polar(sensor: [f64; 2], sigma_r: f64, sigma_az: f64) -> Result<Pol
         sensor,
         RadarNoise::constant(sigma_r, sigma_az, 0.0)?,
     )?)
-}
-
-/// Predicts over `dt` (skipped when `dt = 0`, plots of one instant) and updates with `z`.
-///
-/// # Errors
-/// The filter's error.
-pub(crate) fn step<
-    const N: usize,
-    const M: usize,
-    F: GaussianFilter<N>,
-    Me: MeasurementModel<N, M>,
->(
-    filter: &F,
-    est: &Gaussian<N>,
-    dt: f64,
-    meas: &Me,
-    z: &Vector<M>,
-) -> Result<(Gaussian<N>, Innovation<M>), argus_filters::FilterError> {
-    let pred = if dt == 0.0 {
-        *est
-    } else {
-        filter.predict(est, dt)?
-    };
-    filter.update(&pred, meas, z)
 }
 
 /// The largest number of motion models an `argus track` IMM may have (the mode count is a

@@ -4,15 +4,14 @@
 //! Errors are printed once (`error: <file>:<line>: field '<f>': <what>`) and the process
 //! exits with code 2; nothing a user feeds in panics.
 
-mod campaign;
 mod error;
 mod estimator;
 mod output;
 mod plotfile;
+mod progress;
 mod render;
-mod report;
-mod scenario;
-mod scenarios;
+mod runs_file;
+mod summary;
 mod track;
 mod track_multi;
 
@@ -23,9 +22,11 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use argus_scenarios::{Params, Scenario};
+
 use crate::error::CliError;
-use crate::report::RunInfo;
-use crate::scenario::{Params, Progress, RunContext};
+use crate::progress::Bar;
+use crate::summary::{RunInfo, table_text};
 
 /// Radar target tracking: reproduce the seed papers' experiments, simulate plots, track.
 #[derive(Debug, Parser)]
@@ -113,25 +114,17 @@ fn parse_runs(s: &str) -> Result<Range<u64>, CliError> {
     if r.is_empty() { Err(bad()) } else { Ok(r) }
 }
 
-fn find(name: &str) -> Result<Box<dyn scenario::Scenario>, CliError> {
-    scenarios::find(name).ok_or_else(|| {
-        let known: Vec<&str> = scenarios::all().iter().map(|s| s.name()).collect();
-        CliError::Usage(format!(
-            "unknown scenario '{name}' (known: {})",
-            known.join(", ")
-        ))
-    })
+fn find(name: &str) -> Result<Box<dyn Scenario>, CliError> {
+    Ok(argus_scenarios::find(name)?)
 }
 
 fn execute(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Scenarios => {
-            for s in scenarios::all() {
+            for s in argus_scenarios::list() {
                 println!(
                     "{:<16} {} (default {} runs)",
-                    s.name(),
-                    s.description(),
-                    s.default_runs()
+                    s.name, s.description, s.default_runs
                 );
             }
         }
@@ -149,25 +142,22 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             };
             let params = Params::from_settings(&sc.params(), &set)?;
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(sc.name()));
-            let progress = Progress::new(runs.end - runs.start, std::io::stderr().is_terminal());
-            let ctx = RunContext {
-                runs: runs.clone(),
-                seed,
-                params,
-                progress,
-            };
-            let (report, runs_file) = if let Some(sp) = sc.splittable() {
-                let records = sp.records(&ctx)?;
-                let text = campaign::runs_text(sc.name(), seed, &runs, &ctx.params, &records)?;
-                let report =
-                    sp.reduce_records(&ctx.params, &campaign::in_process(records, &runs))?;
-                (report, Some(text))
-            } else {
-                (sc.run(&ctx)?, None)
+            let bar = Bar::new(runs.end - runs.start, std::io::stderr().is_terminal());
+            let run = argus_scenarios::run(sc.as_ref(), runs.clone(), seed, params.clone(), &bar)?;
+            let report = run.report;
+            let runs_text = match &run.records {
+                Some(records) => Some(runs_file::runs_text(
+                    sc.name(),
+                    seed,
+                    &runs,
+                    &params,
+                    records,
+                )?),
+                None => None,
             };
             let mut extra = Vec::new();
-            if let Some(text) = runs_file {
-                let path = campaign::runs_file(&out, &runs);
+            if let Some(text) = runs_text {
+                let path = runs_file::runs_file(&out, &runs);
                 output::write_atomic(&path, text.as_bytes())?;
                 extra.push(path.display().to_string());
             }
@@ -175,10 +165,10 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 scenario: sc.name(),
                 seed,
                 runs: runs.clone(),
-                params: ctx.params.as_map(),
+                params: params.as_map(),
                 extra_files: &extra,
             };
-            let mut files = report.write(&out, &info)?;
+            let mut files = summary::write(&report, &out, &info)?;
             files.extend(extra.iter().cloned());
             println!(
                 "argus run {} --seed {seed} --runs {}..{}",
@@ -186,7 +176,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 runs.start,
                 runs.end
             );
-            print!("{}", report.table_text());
+            print!("{}", table_text(&report));
             for f in files {
                 println!("wrote {f}");
             }
@@ -197,12 +187,12 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             out,
         } => {
             let sc = find(&scenario)?;
-            let sp = sc.splittable().ok_or_else(|| {
-                CliError::Usage(format!(
-                    "scenario '{}' does not write per-run records yet: run it whole",
-                    sc.name()
-                ))
-            })?;
+            if sc.splittable().is_none() {
+                return Err(argus_scenarios::ScenarioError::NotSplittable {
+                    scenario: sc.name(),
+                }
+                .into());
+            }
             let same = |a: &PathBuf| match (std::fs::canonicalize(a), std::fs::canonicalize(&out)) {
                 (Ok(x), Ok(y)) => x == y,
                 _ => false,
@@ -213,11 +203,11 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     d.display()
                 )));
             }
-            let m = campaign::read_dirs(sc.name(), &sc.params(), &dirs)?;
-            let report = sp.reduce_records(&m.params, &m.records)?;
+            let m = runs_file::read_dirs(sc.name(), &sc.params(), &dirs)?;
+            let report = argus_scenarios::merge(sc.as_ref(), &m.params, &m.records)?;
             let records: Vec<String> = m.records.iter().map(|r| r.json.clone()).collect();
-            let text = campaign::runs_text(sc.name(), m.seed, &m.runs, &m.params, &records)?;
-            let path = campaign::runs_file(&out, &m.runs);
+            let text = runs_file::runs_text(sc.name(), m.seed, &m.runs, &m.params, &records)?;
+            let path = runs_file::runs_file(&out, &m.runs);
             output::write_atomic(&path, text.as_bytes())?;
             let extra = vec![path.display().to_string()];
             let info = RunInfo {
@@ -227,7 +217,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 params: m.params.as_map(),
                 extra_files: &extra,
             };
-            let mut files = report.write(&out, &info)?;
+            let mut files = summary::write(&report, &out, &info)?;
             files.extend(extra.iter().cloned());
             println!(
                 "argus merge {} --seed {} --runs {}..{} ({} files)",
@@ -237,7 +227,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 m.runs.end,
                 m.files.len()
             );
-            print!("{}", report.table_text());
+            print!("{}", table_text(&report));
             for f in files {
                 println!("wrote {f}");
             }

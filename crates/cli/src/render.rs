@@ -8,7 +8,7 @@ use std::sync::OnceLock;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use crate::report::{Figure, LineStyle};
+use argus_scenarios::{Figure, LineStyle};
 
 const PALETTE: [RGBColor; 6] = [
     RGBColor(31, 119, 180),

@@ -13,7 +13,8 @@
 //! - [`exx_pseudo_measurement`], [`ExxCollector`]: the EXX baseline on plot triples.
 //! - [`Registrar`]: the asynchronous loop of Fig. 1; [`BiasedTrack::compensated`]:
 //!   eqs (37)–(41).
-//! - [`simulation`]: the bias-32 scenario of SPEC §004 (noise supplied by the caller).
+//!
+//! The bias-32 scenario of SPEC §004 that runs these pieces is in `argus-scenarios`.
 //!
 //! State order `[x, vx, y, vy]`; azimuth from +x counter-clockwise; SI units.
 //!
@@ -47,7 +48,6 @@ mod local;
 mod polar;
 mod pseudo;
 mod registrar;
-pub mod simulation;
 
 pub use error::RegistrationError;
 pub use estimator::{Backend, BiasEstimator, PseudoMeasurement, STACK_MAX_SENSORS};

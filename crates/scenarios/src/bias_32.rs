@@ -1,30 +1,33 @@
 //! `argus run bias-32`: multisensor registration of seed 004 (SPEC §004) — bias RMSE of
 //! the pseudo-measurement method and EXX (paper Figs. 3–6), track 1 and 32 RMSE of
 //! sensor 1 with and without compensation (Figs. 8–11). The scenario itself lives in
-//! `argus_registration::simulation`; this file runs it through `argus_sim::monte_carlo`.
+//! [`experiment`]; this file runs it through `argus_sim::monte_carlo`.
 //!
 //! `--set sensors=2,4,8 --set targets=32,128,512` runs a sweep instead: one campaign per
 //! combination, reporting the cost per plot and the final bias RMSE of each (table rows,
 //! `summary.json` and `sweep.csv`). Extra sensors sit on the x axis at 10 km spacing with
 //! offsets `s/S` s; extra targets continue the 8-column grid upward (rows 10 km apart).
 
+pub mod experiment;
+
 use argus_core_math::Vector;
-use argus_registration::simulation::{ScenarioConfig, Summary, run};
 use argus_registration::{Initiation, Linearization};
 use argus_sim::{
     Bias, KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
     monte_carlo,
 };
+use experiment::{ScenarioConfig, Summary, run};
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::error::CliError;
+use crate::error::ScenarioError;
+use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
+use crate::scenario::{RunContext, Scenario};
 
 pub(crate) struct Bias32;
 
 /// The scenario for `sensors` radars and `targets` targets with the other parameters of `p`.
-fn config(p: &Params, sensors: usize, targets: usize) -> Result<ScenarioConfig, CliError> {
+fn config(p: &Params, sensors: usize, targets: usize) -> Result<ScenarioConfig, ScenarioError> {
     let mut c = ScenarioConfig::grid(sensors, targets)?;
     c.recorded = if targets >= 32 {
         vec![0, 31]
@@ -48,7 +51,7 @@ fn config(p: &Params, sensors: usize, targets: usize) -> Result<ScenarioConfig, 
 }
 
 /// The single-campaign configuration (`sensors` and `targets` one value each).
-fn single_config(p: &Params) -> Result<ScenarioConfig, CliError> {
+fn single_config(p: &Params) -> Result<ScenarioConfig, ScenarioError> {
     config(p, p.get("sensors")? as usize, p.get("targets")? as usize)
 }
 
@@ -62,7 +65,7 @@ const UNITS: [&str; 4] = ["m", "rad", "-", "-"];
 
 /// The sweep over every (sensors, targets) combination: per combination one campaign of
 /// `ctx.runs`, its wall time per plot and its final bias RMSE.
-fn sweep(ctx: &RunContext, sensors: &[f64], targets: &[f64]) -> Result<Report, CliError> {
+fn sweep(ctx: &RunContext, sensors: &[f64], targets: &[f64]) -> Result<Report, ScenarioError> {
     let mut rows = Vec::new();
     let mut table = Vec::new();
     let progress = &ctx.progress;
@@ -71,7 +74,7 @@ fn sweep(ctx: &RunContext, sensors: &[f64], targets: &[f64]) -> Result<Report, C
             let (s_count, n) = (s_count as usize, n as usize);
             let c = config(&ctx.params, s_count, n)?;
             let started = std::time::Instant::now();
-            let one = |_: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<_, CliError> {
+            let one = |_: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<_, ScenarioError> {
                 Ok(run(&c, &mut || StandardNormal.sample(rng))?)
             };
             let recs = monte_carlo(ctx.seed, ctx.runs.clone(), one, || progress.tick())?;
@@ -199,7 +202,7 @@ impl Scenario for Bias32 {
     /// The truth and the radars of one run, each radar with its true bias, so that
     /// `argus simulate bias-32` writes the biased plots the registration sees
     /// (β = [20 m, 2 mrad, 3e-5, 2e-4] on every radar).
-    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
+    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {
         let c = single_config(p)?;
         let mut truth = Truth::new();
         for x in &c.targets {
@@ -242,14 +245,14 @@ impl Scenario for Bias32 {
     }
 
     #[allow(clippy::too_many_lines)]
-    fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
+    fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
         let (sensors, targets) = (ctx.params.list("sensors")?, ctx.params.list("targets")?);
         if sensors.len() > 1 || targets.len() > 1 {
             return sweep(ctx, &sensors, &targets);
         }
         let c = single_config(&ctx.params)?;
         let started = std::time::Instant::now();
-        let one = |_: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<_, CliError> {
+        let one = |_: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<_, ScenarioError> {
             Ok(run(&c, &mut || StandardNormal.sample(rng))?)
         };
         let progress = &ctx.progress;
@@ -549,15 +552,16 @@ mod tests {
     #![allow(clippy::unwrap_used)] // test code: a failure should panic with its message
 
     use super::*;
-    use crate::scenario::Progress;
+    use crate::error::ParamProblem;
+    use crate::scenario::NoProgress;
 
-    fn ctx(settings: &[&str]) -> Result<RunContext, CliError> {
+    fn ctx(settings: &[&str]) -> Result<RunContext<'static>, ScenarioError> {
         let settings: Vec<String> = settings.iter().map(|s| (*s).to_owned()).collect();
         Ok(RunContext {
             runs: 0..1,
             seed: 5,
             params: Params::from_settings(&Bias32.params(), &settings)?,
-            progress: Progress::new(0, false),
+            progress: &NoProgress,
         })
     }
 
@@ -597,19 +601,24 @@ mod tests {
         // scene) refuses one with a usage error naming the key.
         assert!(matches!(
             ctx(&["targets=32,0"]),
-            Err(CliError::Usage(m)) if m.contains("targets")
+            Err(ScenarioError::Param { key, problem: ParamProblem::OutOfRange { .. } }) if key == "targets"
         ));
         assert!(matches!(
             ctx(&["targets=32,x"]),
-            Err(CliError::Usage(m)) if m.contains("not a number")
+            Err(ScenarioError::Param {
+                problem: ParamProblem::NotANumber { .. },
+                ..
+            })
         ));
         let c = ctx(&["sensors=2,4"]).unwrap();
         assert!(matches!(
             Bias32.scene(&c.params),
-            Err(CliError::Usage(m)) if m.contains("sensors")
+            Err(ScenarioError::Param { key, problem: ParamProblem::List { len: 2 } }) if key == "sensors"
         ));
         let c = ctx(&["duration=3,4"]).unwrap();
-        assert!(matches!(Bias32.run(&c), Err(CliError::Usage(m)) if m.contains("duration")));
+        assert!(
+            matches!(Bias32.run(&c), Err(ScenarioError::Param { key, problem: ParamProblem::List { .. } }) if key == "duration")
+        );
     }
 
     #[test]

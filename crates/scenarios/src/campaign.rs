@@ -1,38 +1,30 @@
 //! Splittable campaigns: a scenario that computes one serialisable record per run and
-//! reduces the records into its [`Report`] can be run in pieces (`argus run --runs A..B`
-//! on several machines) and merged (`argus merge`), with the numbers of one whole run.
+//! reduces the records into its [`Report`] can be run in pieces (runs `A..B` on several
+//! machines) and merged, with the numbers of one whole run.
 //!
 //! A scenario opts in by implementing [`Campaign`] and returning `Some(self)` from
-//! [`Scenario::splittable`](crate::scenario::Scenario::splittable). The framework then
-//! writes `runs/<A>-<B>.jsonl` beside the report (format in `docs/FORMATS.md`):
-//!
-//! ```text
-//! {"argus_runs":1,"scenario":"cv-polar","seed":1,"runs":[0,40],"params":{...}}
-//! {"run":0,"record":...}
-//! {"run":1,"record":...}
-//! ```
+//! [`Scenario::splittable`](crate::scenario::Scenario::splittable). The records are JSON
+//! text; the command stores them as `runs/<A>-<B>.jsonl` beside the report (format in
+//! `docs/FORMATS.md`) and reads them back for `argus merge`.
 //!
 //! Even a whole campaign is reduced from the records as read back from their JSON
-//! text, so a report from `argus run` and one from `argus merge` of the same runs
+//! text, so a report from one whole run and one from merged pieces of the same runs
 //! come from the same bytes (serde_json's `float_roundtrip` makes the text exact).
 
-use std::collections::BTreeMap;
 use std::ops::Range;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use argus_sim::{ChaCha8Rng, monte_carlo};
+use serde::Serialize;
 use serde::de::DeserializeOwned;
-use serde::{Deserialize, Serialize};
 
-use crate::error::CliError;
+use crate::error::ScenarioError;
+use crate::params::Params;
 use crate::report::Report;
-use crate::scenario::{ParamSpec, Params, RunContext};
-
-/// Version of the per-run file layout (the header's `argus_runs` value).
-pub(crate) const RUNS_FORMAT: u32 = 1;
+use crate::scenario::RunContext;
 
 /// A Monte Carlo campaign split into independent runs and a reduce step.
-pub(crate) trait Campaign: Sync {
+pub trait Campaign: Sync {
     /// Read-only data shared by the runs and the reduce step (scene, filters …), built
     /// once from the parameters.
     type Setup: Sync;
@@ -45,7 +37,7 @@ pub(crate) trait Campaign: Sync {
     ///
     /// # Errors
     /// Whatever building the scene or filters reports.
-    fn setup(&self, params: &Params) -> Result<Self::Setup, CliError>;
+    fn setup(&self, params: &Params) -> Result<Self::Setup, ScenarioError>;
 
     /// Run `run` with its own generator ([`argus_sim::run_rng`]`(seed, run)`).
     ///
@@ -56,54 +48,60 @@ pub(crate) trait Campaign: Sync {
         setup: &Self::Setup,
         run: u64,
         rng: &mut ChaCha8Rng,
-    ) -> Result<Self::Run, CliError>;
+    ) -> Result<Self::Run, ScenarioError>;
 
     /// The report of the runs given, in run order.
     ///
     /// # Errors
     /// Whatever the metrics report (e.g. every run lost).
-    fn reduce(&self, setup: &Self::Setup, runs: &[Self::Run]) -> Result<Report, CliError>;
+    fn reduce(&self, setup: &Self::Setup, runs: &[Self::Run]) -> Result<Report, ScenarioError>;
 }
 
 /// The object-safe face of a [`Campaign`], used by the command.
-pub(crate) trait Splittable: Sync {
+pub trait Splittable: Sync {
     /// Computes the runs of `ctx` in parallel and returns their records as JSON text,
     /// in run order.
     ///
     /// # Errors
     /// The first failing run's error (in run order).
-    fn records(&self, ctx: &RunContext) -> Result<Vec<String>, CliError>;
+    fn records(&self, ctx: &RunContext<'_>) -> Result<Vec<String>, ScenarioError>;
 
     /// Parses the records (JSON text, in run order) and reduces them.
     ///
     /// # Errors
-    /// [`CliError::Input`] for a record that does not parse (with `source`'s file and
+    /// [`ScenarioError::Record`] for a record that does not parse (with its file and
     /// line), then the reduce step's error.
-    fn reduce_records(&self, params: &Params, records: &[RecordText]) -> Result<Report, CliError>;
+    fn reduce_records(
+        &self,
+        params: &Params,
+        records: &[RecordText],
+    ) -> Result<Report, ScenarioError>;
 }
 
 /// One run's record as text, with where it came from (for error messages).
 #[derive(Debug, Clone)]
-pub(crate) struct RecordText {
+pub struct RecordText {
     /// The JSON text of the record.
-    pub(crate) json: String,
+    pub json: String,
     /// File it was read from (empty when computed in this process).
-    pub(crate) file: PathBuf,
+    pub file: PathBuf,
     /// 1-based line in that file.
-    pub(crate) line: u64,
+    pub line: u64,
 }
 
 impl<C: Campaign> Splittable for C {
-    fn records(&self, ctx: &RunContext) -> Result<Vec<String>, CliError> {
+    fn records(&self, ctx: &RunContext<'_>) -> Result<Vec<String>, ScenarioError> {
         let setup = self.setup(&ctx.params)?;
         let progress = &ctx.progress;
         let runs = monte_carlo(
             ctx.seed,
             ctx.runs.clone(),
-            |run, rng| -> Result<String, CliError> {
+            |run, rng| -> Result<String, ScenarioError> {
                 let r = self.one_run(&setup, run, rng)?;
-                serde_json::to_string(&r)
-                    .map_err(|e| CliError::Usage(format!("run {run}: cannot serialise: {e}")))
+                serde_json::to_string(&r).map_err(|e| ScenarioError::Serialize {
+                    run,
+                    message: e.to_string(),
+                })
             },
             || progress.tick(),
         );
@@ -111,18 +109,19 @@ impl<C: Campaign> Splittable for C {
         runs
     }
 
-    fn reduce_records(&self, params: &Params, records: &[RecordText]) -> Result<Report, CliError> {
+    fn reduce_records(
+        &self,
+        params: &Params,
+        records: &[RecordText],
+    ) -> Result<Report, ScenarioError> {
         let setup = self.setup(params)?;
         let runs = records
             .iter()
             .map(|r| {
-                serde_json::from_str::<C::Run>(&r.json).map_err(|e| {
-                    CliError::input(
-                        &r.file,
-                        Some(r.line),
-                        Some("record"),
-                        format!("not a record of this scenario: {e}"),
-                    )
+                serde_json::from_str::<C::Run>(&r.json).map_err(|e| ScenarioError::Record {
+                    file: r.file.clone(),
+                    line: r.line,
+                    message: e.to_string(),
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
@@ -130,259 +129,8 @@ impl<C: Campaign> Splittable for C {
     }
 }
 
-/// First line of a per-run file.
-#[derive(Debug, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Header {
-    argus_runs: u32,
-    scenario: String,
-    seed: u64,
-    runs: [u64; 2],
-    params: BTreeMap<String, f64>,
-}
-
-/// Every later line.
-#[derive(Debug, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Line {
-    run: u64,
-    record: Box<serde_json::value::RawValue>,
-}
-
-/// The per-run file's name for runs `A..B`: `runs/<A>-<B>.jsonl` under `dir`.
-pub(crate) fn runs_file(dir: &Path, runs: &Range<u64>) -> PathBuf {
-    dir.join("runs")
-        .join(format!("{}-{}.jsonl", runs.start, runs.end))
-}
-
-/// The text of a per-run file: header and one line per record (`records[i]` is run
-/// `runs.start + i`).
-///
-/// # Errors
-/// [`CliError::Usage`] if the record count does not match the range (a framework bug,
-/// reported rather than writing a wrong file).
-pub(crate) fn runs_text(
-    scenario: &str,
-    seed: u64,
-    runs: &Range<u64>,
-    params: &Params,
-    records: &[String],
-) -> Result<String, CliError> {
-    if records.len() as u64 != runs.end - runs.start {
-        return Err(CliError::Usage(format!(
-            "{} records for runs {}..{}",
-            records.len(),
-            runs.start,
-            runs.end
-        )));
-    }
-    let header = Header {
-        argus_runs: RUNS_FORMAT,
-        scenario: scenario.to_owned(),
-        seed,
-        runs: [runs.start, runs.end],
-        params: params.as_map().clone(),
-    };
-    let to_err = |e: serde_json::Error| CliError::Usage(format!("per-run file: {e}"));
-    let mut s = serde_json::to_string(&header).map_err(to_err)?;
-    s.push('\n');
-    for (run, rec) in runs.clone().zip(records) {
-        s.push_str(&format!("{{\"run\":{run},\"record\":{rec}}}\n"));
-    }
-    Ok(s)
-}
-
-/// The union of the per-run files found in `dirs`, checked and ordered.
-#[derive(Debug)]
-pub(crate) struct Merged {
-    /// The common base seed.
-    pub(crate) seed: u64,
-    /// The run indices covered, `start..end` without gap.
-    pub(crate) runs: Range<u64>,
-    /// The common parameters, validated against the scenario's specs.
-    pub(crate) params: Params,
-    /// The records in run order.
-    pub(crate) records: Vec<RecordText>,
-    /// The files read.
-    pub(crate) files: Vec<PathBuf>,
-}
-
-/// Reads every `runs/*.jsonl` in `dirs` for scenario `scenario` and checks that they share
-/// the seed and parameters, hold each run once, and together cover `A..B` without gap.
-///
-/// # Errors
-/// [`CliError::Input`] naming the file, line and field of a bad header or line, a
-/// second copy of a run, another scenario, seed or parameter set; [`CliError::Usage`]
-/// for a directory without per-run files or a gap in the runs; [`CliError::Io`].
-pub(crate) fn read_dirs(
-    scenario: &str,
-    specs: &[ParamSpec],
-    dirs: &[PathBuf],
-) -> Result<Merged, CliError> {
-    let mut files = Vec::new();
-    for d in dirs {
-        let rd = d.join("runs");
-        let entries = std::fs::read_dir(&rd).map_err(|e| CliError::io(&rd, e))?;
-        let mut found: Vec<PathBuf> = entries
-            .filter_map(Result::ok)
-            .map(|e| e.path())
-            .filter(|p| p.extension().is_some_and(|x| x == "jsonl"))
-            .collect();
-        if found.is_empty() {
-            return Err(CliError::Usage(format!(
-                "{}: no per-run file (runs/<A>-<B>.jsonl, written by `argus run`)",
-                d.display()
-            )));
-        }
-        found.sort();
-        files.extend(found);
-    }
-    // (seed, params, file) of the first file, to compare the others with.
-    let mut first: Option<(u64, BTreeMap<String, f64>, PathBuf)> = None;
-    let mut by_run: BTreeMap<u64, RecordText> = BTreeMap::new();
-    for f in &files {
-        let text = std::fs::read_to_string(f).map_err(|e| CliError::io(f, e))?;
-        let mut lines = text.lines().enumerate();
-        let (_, head) = lines
-            .next()
-            .ok_or_else(|| CliError::input(f, Some(1), None, "empty per-run file"))?;
-        let h: Header = serde_json::from_str(head)
-            .map_err(|e| CliError::input(f, Some(1), None, format!("not a per-run header: {e}")))?;
-        if h.argus_runs != RUNS_FORMAT {
-            return Err(CliError::input(
-                f,
-                Some(1),
-                Some("argus_runs"),
-                format!(
-                    "layout version {} (this argus reads {RUNS_FORMAT})",
-                    h.argus_runs
-                ),
-            ));
-        }
-        if h.scenario != scenario {
-            return Err(CliError::input(
-                f,
-                Some(1),
-                Some("scenario"),
-                format!("runs of '{}', not '{scenario}'", h.scenario),
-            ));
-        }
-        match &first {
-            None => first = Some((h.seed, h.params.clone(), f.clone())),
-            Some((seed, params, f0)) => {
-                if *seed != h.seed {
-                    return Err(CliError::input(
-                        f,
-                        Some(1),
-                        Some("seed"),
-                        format!("seed {} differs from {} in {}", h.seed, seed, f0.display()),
-                    ));
-                }
-                let same = params.len() == h.params.len()
-                    && params
-                        .iter()
-                        .zip(h.params.iter())
-                        .all(|((k0, v0), (k1, v1))| k0 == k1 && v0.to_bits() == v1.to_bits());
-                if !same {
-                    return Err(CliError::input(
-                        f,
-                        Some(1),
-                        Some("params"),
-                        format!("parameters differ from those in {}", f0.display()),
-                    ));
-                }
-            }
-        }
-        let range = h.runs[0]..h.runs[1];
-        let mut count = 0u64;
-        for (i, l) in lines {
-            let line = i as u64 + 1;
-            if l.trim().is_empty() {
-                continue;
-            }
-            let rec: Line = serde_json::from_str(l).map_err(|e| {
-                CliError::input(f, Some(line), None, format!("not a run line: {e}"))
-            })?;
-            if !range.contains(&rec.run) {
-                return Err(CliError::input(
-                    f,
-                    Some(line),
-                    Some("run"),
-                    format!(
-                        "run {} outside the header's {}..{}",
-                        rec.run, range.start, range.end
-                    ),
-                ));
-            }
-            let text = RecordText {
-                json: rec.record.get().to_owned(),
-                file: f.clone(),
-                line,
-            };
-            if let Some(prev) = by_run.insert(rec.run, text) {
-                return Err(CliError::input(
-                    f,
-                    Some(line),
-                    Some("run"),
-                    format!(
-                        "run {} also in {}:{} (each run must come once)",
-                        rec.run,
-                        prev.file.display(),
-                        prev.line
-                    ),
-                ));
-            }
-            count += 1;
-        }
-        if count != range.end.saturating_sub(range.start) {
-            return Err(CliError::input(
-                f,
-                None,
-                Some("runs"),
-                format!(
-                    "{count} run lines for runs {}..{} (truncated file?)",
-                    range.start, range.end
-                ),
-            ));
-        }
-    }
-    let Some((seed, params, _)) = first else {
-        return Err(CliError::Usage("no per-run file given".into()));
-    };
-    let (Some(&start), Some(&last)) = (by_run.keys().next(), by_run.keys().next_back()) else {
-        return Err(CliError::Usage("the per-run files hold no run".into()));
-    };
-    let end = last + 1;
-    if end - start != by_run.len() as u64 {
-        let missing: Vec<String> = (start..end)
-            .filter(|r| !by_run.contains_key(r))
-            .take(5)
-            .map(|r| r.to_string())
-            .collect();
-        return Err(CliError::Usage(format!(
-            "runs {start}..{end} have gaps (missing run {} …): merge only complete ranges",
-            missing.join(", ")
-        )));
-    }
-    // Revalidate the parameters against the scenario (the file may have been edited).
-    let settings: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
-    let params = Params::from_settings(specs, &settings)?;
-    if params.as_map().len() != settings.len() {
-        return Err(CliError::Usage(
-            "the per-run files lack some of the scenario's parameters".into(),
-        ));
-    }
-    Ok(Merged {
-        seed,
-        runs: start..end,
-        params,
-        records: by_run.into_values().collect(),
-        files,
-    })
-}
-
 /// In-process records as [`RecordText`] (no file).
-pub(crate) fn in_process(records: Vec<String>, runs: &Range<u64>) -> Vec<RecordText> {
+pub fn in_process(records: Vec<String>, runs: &Range<u64>) -> Vec<RecordText> {
     records
         .into_iter()
         .zip(runs.clone())
@@ -392,54 +140,4 @@ pub(crate) fn in_process(records: Vec<String>, runs: &Range<u64>) -> Vec<RecordT
             line: 1,
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn per_run_file_round_trips_every_f64_exactly() {
-        // Values whose shortest decimal form needs care when parsed back: serde_json
-        // without `float_roundtrip` may miss them by one ulp.
-        let tricky: Vec<f64> = vec![
-            0.1 + 0.2,
-            1.0 / 3.0,
-            2.225_073_858_507_201e-308,
-            5e-324,
-            f64::MAX,
-            -1.797_693_134_862_315_7e308,
-            9_007_199_254_740_993.0,
-            20.946_123_456_789_012,
-        ];
-        let records: Vec<String> = tricky
-            .iter()
-            .map(|v| serde_json::to_string(&vec![*v]).unwrap())
-            .collect();
-        let runs = 3..3 + tricky.len() as u64;
-        let params = Params::from_settings(&[], &[]).unwrap();
-        let text = runs_text("t", 7, &runs, &params, &records).unwrap();
-        let dir = tempfile::tempdir().unwrap();
-        std::fs::create_dir_all(dir.path().join("runs")).unwrap();
-        std::fs::write(runs_file(dir.path(), &runs), text).unwrap();
-        let m = read_dirs("t", &[], &[dir.path().to_path_buf()]).unwrap();
-        assert_eq!(m.seed, 7);
-        assert_eq!(m.runs, runs);
-        for (rec, want) in m.records.iter().zip(&tricky) {
-            let got: Vec<f64> = serde_json::from_str(&rec.json).unwrap();
-            assert_eq!(got[0].to_bits(), want.to_bits(), "{want:e}");
-        }
-        // Another scenario's name is refused, naming the header field.
-        let e = read_dirs("other", &[], &[dir.path().to_path_buf()]).unwrap_err();
-        assert!(
-            matches!(&e, CliError::Input { at, .. } if at.line == Some(1) && at.field.as_deref() == Some("scenario")),
-            "{e}"
-        );
-    }
-
-    #[test]
-    fn record_count_must_match_range() {
-        let params = Params::from_settings(&[], &[]).unwrap();
-        assert!(runs_text("t", 1, &(0..3), &params, &["1".into(), "2".into()]).is_err());
-    }
 }

@@ -22,10 +22,11 @@ use argus_sensors::CartesianPosition;
 use argus_sim::{ChaCha8Rng, Metrics, RunRecord, SensorSpec, StepRecord, Truth, monte_carlo};
 use rand_distr::{Distribution, Exp1, Poisson, StandardNormal, Uniform};
 
-use crate::error::CliError;
+use crate::error::ScenarioError;
 use crate::estimator::cv_kf;
+use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
+use crate::scenario::{RunContext, Scenario};
 
 /// The `clutter` scenario.
 pub(crate) struct Clutter;
@@ -98,12 +99,20 @@ pub(crate) struct ConfigResult {
 /// Reads one prediction from a configuration's results.
 type Predicted = fn(&ConfigResult) -> Option<f64>;
 
-fn assoc(e: argus_association::AssociationError) -> CliError {
-    CliError::Usage(format!("association: {e}"))
+fn assoc(e: argus_association::AssociationError) -> ScenarioError {
+    ScenarioError::Association(e)
+}
+
+/// A distribution's parameter error.
+fn distribution(what: &'static str, e: &dyn std::fmt::Display) -> ScenarioError {
+    ScenarioError::Distribution {
+        what,
+        message: e.to_string(),
+    }
 }
 
 #[allow(non_snake_case)]
-fn system(c: &Config) -> Result<(Matrix<4, 4>, Matrix<4, 4>, LinearSystem<4, 2>), CliError> {
+fn system(c: &Config) -> Result<(Matrix<4, 4>, Matrix<4, 4>, LinearSystem<4, 2>), ScenarioError> {
     let model = Cv2D::discrete(c.sigma_a)?;
     let F = model.transition(c.period);
     let Q = model.process_noise(&Vector::<4>::zeros(), c.period);
@@ -120,7 +129,7 @@ fn initial_cov(c: &Config) -> Matrix<4, 4> {
 fn predicted_rmse(
     p: &PerformancePredictor<4, 2>,
     p0: &Matrix<4, 4>,
-) -> Result<Option<f64>, CliError> {
+) -> Result<Option<f64>, ScenarioError> {
     Ok(match p.steady_state(p0, 1e-9, 20_000).map_err(assoc)? {
         SteadyState::Converged { step, .. } => {
             Some((step.posterior[(0, 0)] + step.posterior[(2, 2)]).sqrt())
@@ -143,7 +152,7 @@ pub(crate) fn run_config(
     seed: u64,
     runs: std::ops::Range<u64>,
     tick: &(dyn Fn() + Sync),
-) -> Result<ConfigResult, CliError> {
+) -> Result<ConfigResult, ScenarioError> {
     let (F, Q, sys) = system(c)?;
     let kf = cv_kf(c.sigma_a)?;
     let R = Matrix::<2, 2>::identity() * (c.sigma * c.sigma);
@@ -198,12 +207,12 @@ pub(crate) fn run_config(
         .map(|ch| ch.l())
         .unwrap_or_else(Matrix::<4, 4>::identity);
     let n_clutter = Poisson::new(c.density * 4.0 * c.half_width * c.half_width)
-        .map_err(|e| CliError::Usage(format!("clutter count: {e}")))?;
-    let unit = Uniform::new(-1.0, 1.0).map_err(|e| CliError::Usage(format!("uniform: {e}")))?;
+        .map_err(|e| distribution("clutter count", &e))?;
+    let unit = Uniform::new(-1.0, 1.0).map_err(|e| distribution("uniform", &e))?;
     let d_lin = amp.snr();
     let tau2 = amp.threshold() * amp.threshold();
 
-    let one_run = |_: u64, rng: &mut ChaCha8Rng| -> Result<Vec<RunRecord>, CliError> {
+    let one_run = |_: u64, rng: &mut ChaCha8Rng| -> Result<Vec<RunRecord>, ScenarioError> {
         let w4 = Vector::<4>::new(
             StandardNormal.sample(rng),
             StandardNormal.sample(rng),
@@ -229,7 +238,7 @@ pub(crate) fn run_config(
             let pos = H * x;
             plots.clear();
             let u: f64 = Uniform::new(0.0, 1.0)
-                .map_err(|e| CliError::Usage(format!("uniform: {e}")))?
+                .map_err(|e| distribution("uniform", &e))?
                 .sample(rng);
             if u < c.p_d {
                 let e: f64 = Exp1.sample(rng);
@@ -333,7 +342,7 @@ pub(crate) fn run_config(
 ///
 /// # Errors
 /// An undeclared parameter.
-pub(crate) fn config(p: &Params, density: f64, snr_db: f64) -> Result<Config, CliError> {
+pub(crate) fn config(p: &Params, density: f64, snr_db: f64) -> Result<Config, ScenarioError> {
     Ok(Config {
         steps: p.get("steps")? as usize,
         period: p.get("period")?,
@@ -406,15 +415,15 @@ impl Scenario for Clutter {
         ]
     }
 
-    fn scene(&self, _p: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
-        Err(CliError::Usage(
-            "clutter: the truth has process noise and is drawn per run; no fixed scene to export"
-                .into(),
-        ))
+    fn scene(&self, _p: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {
+        Err(ScenarioError::NoScene {
+            scenario: "clutter",
+            reason: "the truth has process noise and is drawn per run; no fixed scene to export",
+        })
     }
 
     #[allow(clippy::too_many_lines)]
-    fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
+    fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
         let p = &ctx.params;
         let mut report = Report::default();
         let mut table = Vec::new();

@@ -17,13 +17,14 @@ use argus_sim::{
 };
 use serde::{Deserialize, Serialize};
 
-use crate::error::CliError;
+use crate::error::ScenarioError;
 use argus_filters::two_point_cv2;
 
 use crate::campaign::{Campaign, Splittable, in_process};
 use crate::estimator::{CvKf, cv_kf, position, step, unbiased};
+use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
+use crate::scenario::{RunContext, Scenario};
 
 /// The `cv-polar` scenario.
 pub(crate) struct CvPolar;
@@ -33,6 +34,13 @@ pub(crate) struct CvPolar;
 const LOST_NEES: f64 = 100.0;
 /// Share of steps left out of the time averages.
 const WARMUP: f64 = 0.25;
+
+fn degenerate(message: &str) -> ScenarioError {
+    ScenarioError::Degenerate {
+        scenario: "cv-polar",
+        message: message.to_owned(),
+    }
+}
 
 impl Scenario for CvPolar {
     fn name(&self) -> &'static str {
@@ -115,7 +123,7 @@ impl Scenario for CvPolar {
         ]
     }
 
-    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
+    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {
         let mut truth = Truth::new();
         truth.add(Trajectory::new(
             0.0,
@@ -139,7 +147,7 @@ impl Scenario for CvPolar {
         Ok((truth, vec![radar]))
     }
 
-    fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
+    fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
         let records = Splittable::records(self, ctx)?;
         self.reduce_records(&ctx.params, &in_process(records, &ctx.runs))
     }
@@ -175,13 +183,13 @@ impl Campaign for CvPolar {
     type Setup = Setup;
     type Run = CvRun;
 
-    fn setup(&self, p: &Params) -> Result<Setup, CliError> {
+    fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let (truth, sensors) = self.scene(p)?;
         let traj = truth
             .targets()
             .first()
             .map(|(_, t)| t.clone())
-            .ok_or(CliError::Usage("cv-polar: no target".into()))?;
+            .ok_or_else(|| degenerate("no target"))?;
         Ok(Setup {
             traj,
             sensors,
@@ -197,7 +205,7 @@ impl Campaign for CvPolar {
         s: &Setup,
         _run: u64,
         rng: &mut argus_sim::ChaCha8Rng,
-    ) -> Result<CvRun, CliError> {
+    ) -> Result<CvRun, ScenarioError> {
         let plots = generate_plots(&s.truth, &s.sensors, rng)?;
         let mut conv = Vec::with_capacity(plots.len());
         for pl in &plots {
@@ -208,9 +216,7 @@ impl Campaign for CvPolar {
         }
         let mut conv = conv.into_iter();
         let (Some((t1, z1, r1)), Some((t2, z2, r2))) = (conv.next(), conv.next()) else {
-            return Err(CliError::Usage(
-                "cv-polar: fewer than two plots; increase duration".into(),
-            ));
+            return Err(degenerate("fewer than two plots; increase duration"));
         };
         let mut est = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1)?;
         let mut t = t2;
@@ -219,7 +225,7 @@ impl Campaign for CvPolar {
         let mut record = |t: f64,
                           est: &argus_core_math::Gaussian<4>,
                           nis: Option<f64>|
-         -> Result<(), CliError> {
+         -> Result<(), ScenarioError> {
             let x = s.traj.state_at(t)?.state_2d();
             let r = StepRecord::from_estimate_2d(t, est, &x, nis);
             lost |= r.nees.is_none_or(|n| n > LOST_NEES);
@@ -244,7 +250,7 @@ impl Campaign for CvPolar {
     }
 
     #[allow(clippy::too_many_lines)]
-    fn reduce(&self, _setup: &Setup, runs: &[CvRun]) -> Result<Report, CliError> {
+    fn reduce(&self, _setup: &Setup, runs: &[CvRun]) -> Result<Report, ScenarioError> {
         let results: Vec<(RunRecord, Vec<f64>)> = runs
             .iter()
             .map(|r| {

@@ -3,35 +3,41 @@
 //! origin; continuous–discrete EKF and truncated second-order filter (TSOF), each plain
 //! and with GLRT detection + MRAS input estimation.
 //!
-//! The Monte Carlo lives in [`argus_adaptive::maneuver::drag_bearing`] (also used by the
+//! The Monte Carlo lives in [`experiment`] (also used by the
 //! crate's reduced tests; its docs state α, the prior and every other choice); this file
 //! runs it in parallel and draws Figs. 5–7 (x, y and range of the first run against the
 //! reference trajectory) plus the Monte Carlo RMS errors. Run `i` with base seed `s`
 //! uses `ChaCha8Rng::seed_from_u64((s − 1)·2³² + i)`, so the default seed 1 reproduces
 //! the tests' runs. Results: `docs/papers/001-drag-bearing.md`.
 
+pub mod experiment;
+
 use argus_adaptive::AdaptiveError;
-use argus_adaptive::maneuver::drag_bearing::{
-    DragBearingConfig, DragFilter, DragRun, McSummary, reference_trajectory, simulate_run,
-};
 use argus_core_math::Vector;
 use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
     monte_carlo,
 };
+use experiment::{
+    DragBearingConfig, DragFilter, DragRun, McSummary, reference_trajectory, simulate_run,
+};
 
-use crate::error::CliError;
+use crate::error::ScenarioError;
+use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
+use crate::scenario::{RunContext, Scenario};
 
 /// The scenario.
 pub(crate) struct DragBearing;
 
-fn err(e: AdaptiveError) -> CliError {
-    CliError::Usage(format!("drag-bearing: {e}"))
+fn err(e: AdaptiveError) -> ScenarioError {
+    ScenarioError::Config {
+        scenario: "drag-bearing",
+        source: e,
+    }
 }
 
-fn config(p: &Params) -> Result<DragBearingConfig, CliError> {
+fn config(p: &Params) -> Result<DragBearingConfig, ScenarioError> {
     let c = DragBearingConfig {
         dt: p.get("dt")?,
         duration: p.get("duration")?,
@@ -142,7 +148,7 @@ impl Scenario for DragBearing {
     /// times; positions within the drag curvature of one interval). The sim has no
     /// bearing-only sensor: a polar sensor with the bearing σ stands in (use only its
     /// azimuth; its range σ is set to 1 m and means nothing here).
-    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
+    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {
         let c = config(p)?;
         let traj = reference_trajectory(&c).map_err(err)?;
         let segments = traj
@@ -178,7 +184,7 @@ impl Scenario for DragBearing {
     }
 
     #[allow(clippy::too_many_lines)]
-    fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
+    fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
         let c = config(&ctx.params)?;
         let progress = &ctx.progress;
         let base = ctx.seed;

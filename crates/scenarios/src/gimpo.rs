@@ -18,9 +18,10 @@ use argus_sim::{
     Truth, generate_plots, monte_carlo,
 };
 
-use crate::error::CliError;
+use crate::error::ScenarioError;
+use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
+use crate::scenario::{RunContext, Scenario};
 
 /// The `gimpo` scenario.
 pub(crate) struct Gimpo;
@@ -49,8 +50,8 @@ const REFERENCE_RATIO: [f64; 5] = [0.98, 1.01, 1.03, 1.05, 1.07];
 type PaperImm = Imm<Kf<PlanarModel>, 4, 3>;
 
 /// The paper's IMM (§3.1): CV σv = 0.1 m/s², CT ±ω σv = 0.5 m/s², Markov matrix eq (20).
-fn paper_imm(omega_deg: f64) -> Result<PaperImm, CliError> {
-    let ct = |w: f64| -> Result<Kf<PlanarModel>, CliError> {
+fn paper_imm(omega_deg: f64) -> Result<PaperImm, ScenarioError> {
+    let ct = |w: f64| -> Result<Kf<PlanarModel>, ScenarioError> {
         Ok(Kf::new(PlanarModel::from(
             CoordinatedTurn::from_degrees_per_second(w, 0.5)?,
         )))
@@ -192,7 +193,7 @@ impl Scenario for Gimpo {
         ]
     }
 
-    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
+    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {
         let mut truth = Truth::new();
         let segments = SEGMENTS
             .iter()
@@ -228,7 +229,7 @@ impl Scenario for Gimpo {
     }
 
     #[allow(clippy::too_many_lines)]
-    fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
+    fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
         let p = &ctx.params;
         let (truth, sensors) = self.scene(p)?;
         let true_var =
@@ -264,10 +265,15 @@ impl Scenario for Gimpo {
             .targets()
             .first()
             .map(|(_, t)| t.clone())
-            .ok_or(CliError::Usage("gimpo: no target".into()))?;
+            .ok_or_else(|| ScenarioError::Degenerate {
+                scenario: "gimpo",
+                message: "no target".into(),
+            })?;
         let scaled = |f: f64| NoiseVariances::new(true_var.range() * f, true_var.azimuth() * f);
 
-        let one_run = |run: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<RunOut, CliError> {
+        let one_run = |run: u64,
+                       rng: &mut argus_sim::ChaCha8Rng|
+         -> Result<RunOut, ScenarioError> {
             let plots: Vec<(f64, PolarPlot)> = generate_plots(&truth, &sensors, rng)?
                 .iter()
                 .filter_map(|pl| match pl.measurement {
@@ -278,16 +284,19 @@ impl Scenario for Gimpo {
                 })
                 .collect();
             let (Some((t1, p1)), Some((t2, p2))) = (plots.first(), plots.get(1)) else {
-                return Err(CliError::Usage("gimpo: fewer than two plots".into()));
+                return Err(ScenarioError::Degenerate {
+                    scenario: "gimpo",
+                    message: "fewer than two plots".into(),
+                });
             };
-            let init = |var: &NoiseVariances| -> Result<ImmEstimate<4, 3>, CliError> {
+            let init = |var: &NoiseVariances| -> Result<ImmEstimate<4, 3>, ScenarioError> {
                 let (z1, r1) = argus_imm::unbiased_conversion(p1, var)?;
                 let (z2, r2) = argus_imm::unbiased_conversion(p2, var)?;
                 let g = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1)?;
                 Ok(ImmEstimate::from_common(g, [1.0 / 3.0; 3])?)
             };
             let truth_pos =
-                |t: f64| -> Result<Vector<4>, CliError> { Ok(traj.state_at(t)?.state_2d()) };
+                |t: f64| -> Result<Vector<4>, ScenarioError> { Ok(traj.state_at(t)?.state_2d()) };
             let se =
                 |x: &Vector<4>, tr: &Vector<4>| (x[0] - tr[0]).powi(2) + (x[2] - tr[2]).powi(2);
             let mut out = RunOut::default();

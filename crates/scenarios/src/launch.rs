@@ -21,9 +21,10 @@ use argus_sim::{
 };
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::error::CliError;
+use crate::error::ScenarioError;
+use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
+use crate::scenario::{RunContext, Scenario};
 
 /// The `launch` scenario.
 pub(crate) struct Launch;
@@ -103,7 +104,7 @@ fn ca_state(t: f64, s: &[f64; 6]) -> Vector<9> {
 }
 
 /// The position–velocity marginal `[x, vx, y, vy, z, vz]` of a CA estimate.
-fn marginal(g: &Gaussian<9>) -> Result<Gaussian<6>, CliError> {
+fn marginal(g: &Gaussian<9>) -> Result<Gaussian<6>, ScenarioError> {
     const IDX: [usize; 6] = [0, 1, 3, 4, 6, 7];
     let m = Vector::<6>::from_fn(|i, _| g.mean()[IDX[i]]);
     let p = Matrix::<6, 6>::from_fn(|i, j| g.cov()[(IDX[i], IDX[j])]);
@@ -151,15 +152,15 @@ impl Scenario for Launch {
         ]
     }
 
-    fn scene(&self, _p: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
-        Err(CliError::Usage(
-            "launch: the powered-flight truth is integrated inside the scenario; no scene to export"
-                .into(),
-        ))
+    fn scene(&self, _p: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {
+        Err(ScenarioError::NoScene {
+            scenario: "launch",
+            reason: "the powered-flight truth is integrated inside the scenario; no scene to export",
+        })
     }
 
     #[allow(clippy::too_many_lines)]
-    fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
+    fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
         let p = &ctx.params;
         let period = p.get("period")?;
         let sr = p.get("sigma_r")?;
@@ -180,10 +181,11 @@ impl Scenario for Launch {
             .cholesky()
             .map(|c| c.l())
             .unwrap_or_else(Matrix::<9, 9>::identity);
-        let one_run = |_: u64, rng: &mut ChaCha8Rng| -> Result<RunRecord, CliError> {
-            let first = truth
-                .first()
-                .ok_or(CliError::Usage("launch: no steps".into()))?;
+        let one_run = |_: u64, rng: &mut ChaCha8Rng| -> Result<RunRecord, ScenarioError> {
+            let first = truth.first().ok_or_else(|| ScenarioError::Degenerate {
+                scenario: "launch",
+                message: "no steps".into(),
+            })?;
             let w = Vector::<9>::from_fn(|_, _| StandardNormal.sample(rng));
             let mut est = Gaussian::new(ca_state(0.0, first) + l0 * w, p0)?;
             let mut steps = Vec::with_capacity(times.len());
@@ -329,7 +331,7 @@ impl Scenario for Launch {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario::Progress;
+    use crate::scenario::NoProgress;
 
     #[test]
     fn ekf_tracks_the_launch_vehicle() {
@@ -339,7 +341,7 @@ mod tests {
             runs: 0..20,
             seed: 3,
             params,
-            progress: Progress::new(0, false),
+            progress: &NoProgress,
         };
         let report = Launch.run(&ctx).unwrap();
         let series = report

@@ -2,27 +2,30 @@
 //! switching a 210 m/s² acceleration on and off, plain Kalman filter against the GLRT
 //! adaptive filter (GLRT alone and GLRT + MRAS) for three thresholds η.
 //!
-//! The Monte Carlo lives in [`argus_adaptive::maneuver::maneuver_1d`] (also used by the
+//! The Monte Carlo lives in [`experiment`] (also used by the
 //! crate's reduced tests); this file runs both maneuver cases and a maneuver-free case
 //! over the runs in parallel and reports RMS errors inside and outside the maneuver
 //! windows, per-switch detection delays and false alarms. Run `i` with base seed `s`
 //! draws from `ChaCha8Rng::seed_from_u64((s − 1)·2³² + i)`, so the default seed 1
 //! reproduces the test suite's runs. Parameters and results: `docs/papers/001-maneuver.md`.
 
+pub mod experiment;
+
 use argus_adaptive::AdaptiveError;
 use argus_adaptive::Compensation;
-use argus_adaptive::maneuver::maneuver_1d::{
-    CASE1, CASE2, Maneuver1dConfig, Outcome1d, Stats1d, quantile, run_filters, simulate,
-};
 use argus_core_math::{Matrix, Vector};
 use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
     monte_carlo,
 };
+use experiment::{
+    CASE1, CASE2, Maneuver1dConfig, Outcome1d, Stats1d, quantile, run_filters, simulate,
+};
 
-use crate::error::CliError;
+use crate::error::ScenarioError;
+use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
+use crate::scenario::{RunContext, Scenario};
 
 /// The scenario.
 pub(crate) struct Maneuver1d;
@@ -34,11 +37,14 @@ const COMPS: [(&str, Compensation); 2] = [
     ("glrt_mras", Compensation::GlrtMras),
 ];
 
-fn err(e: AdaptiveError) -> CliError {
-    CliError::Usage(format!("maneuver-1d: {e}"))
+fn err(e: AdaptiveError) -> ScenarioError {
+    ScenarioError::Config {
+        scenario: "maneuver-1d",
+        source: e,
+    }
 }
 
-fn config(p: &Params) -> Result<(Maneuver1dConfig, [f64; 3]), CliError> {
+fn config(p: &Params) -> Result<(Maneuver1dConfig, [f64; 3]), ScenarioError> {
     let c = Maneuver1dConfig {
         accel: p.get("accel")?,
         max_age: p.get("m")? as usize,
@@ -62,7 +68,7 @@ fn run_seed(seed: u64, run: u64) -> u64 {
 /// Per run: for each case, the outcomes of (η, compensation) in `etas × COMPS` order.
 type RunOutcomes = Vec<Vec<Outcome1d>>;
 
-fn one_run(c: &Maneuver1dConfig, etas: &[f64; 3], seed: u64) -> Result<RunOutcomes, CliError> {
+fn one_run(c: &Maneuver1dConfig, etas: &[f64; 3], seed: u64) -> Result<RunOutcomes, ScenarioError> {
     CASES
         .iter()
         .map(|(_, w)| {
@@ -153,7 +159,7 @@ impl Scenario for Maneuver1d {
     /// Case 1 as a sim scene: a target along x with the acceleration on 2.0–6.0 s. The
     /// sim has no 1-D sensor: a Cartesian 2-D sensor with σ on both axes stands in (the
     /// experiment itself uses only x).
-    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
+    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {
         let (c, _) = config(p)?;
         let mut truth = Truth::new();
         let end = c.steps as f64 * c.dt;
@@ -190,7 +196,7 @@ impl Scenario for Maneuver1d {
     }
 
     #[allow(clippy::too_many_lines)]
-    fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
+    fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
         let (c, etas) = config(&ctx.params)?;
         let progress = &ctx.progress;
         let base = ctx.seed;

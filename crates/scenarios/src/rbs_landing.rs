@@ -1,26 +1,27 @@
 //! `argus run rbs-landing`: seed 003 (Kim & Hwang 2013), the adaptive-R decoupled
 //! tracking filter of a radar beacon system on a UAV landing approach.
 //!
-//! The Monte Carlo itself lives in [`argus_adaptive::decoupled_scenario`] (a run is a
+//! The Monte Carlo itself lives in [`experiment`] (a run is a
 //! pure function of its seed, also used by the crate's reduced tests); this file runs
 //! the three noise cases in parallel and turns the statistics into the paper's
 //! figures (Figs. 2–12) and the summary table. Every open parameter is documented in
 //! `docs/papers/003-rbs-landing.md`.
 
+pub mod experiment;
+
 use argus_adaptive::AdaptiveError;
 use argus_adaptive::FrameHandling;
-use argus_adaptive::decoupled_scenario::{
-    FILTERS, FilterKind, McSummary, RbsLandingConfig, RunSeries, simulate_run,
-};
 use argus_core_math::Vector;
 use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
 };
+use experiment::{FILTERS, FilterKind, McSummary, RbsLandingConfig, RunSeries, simulate_run};
 use rayon::prelude::*;
 
-use crate::error::CliError;
+use crate::error::ScenarioError;
+use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
+use crate::scenario::{RunContext, Scenario};
 
 /// The scenario.
 pub(crate) struct RbsLanding;
@@ -29,11 +30,14 @@ pub(crate) struct RbsLanding;
 const CASES: [(&str, f64); 3] = [("scn1", 1.0), ("scn2", 5.0), ("scn3", 10.0)];
 
 /// A configuration the library rejects is a usage error (a `--set` value).
-fn usage(e: AdaptiveError) -> CliError {
-    CliError::Usage(format!("rbs-landing: {e}"))
+fn usage(e: AdaptiveError) -> ScenarioError {
+    ScenarioError::Config {
+        scenario: "rbs-landing",
+        source: e,
+    }
 }
 
-fn config(p: &Params) -> Result<RbsLandingConfig, CliError> {
+fn config(p: &Params) -> Result<RbsLandingConfig, ScenarioError> {
     let window = p.get("window")?;
     let c = RbsLandingConfig {
         dt: p.get("dt")?,
@@ -133,7 +137,7 @@ impl Scenario for RbsLanding {
         ]
     }
 
-    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
+    fn scene(&self, p: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {
         let c = config(p)?;
         let x0 = c.initial_truth();
         let mut truth = Truth::new();
@@ -170,7 +174,7 @@ impl Scenario for RbsLanding {
     }
 
     #[allow(clippy::too_many_lines)]
-    fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
+    fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
         let c = config(&ctx.params)?;
         let runs: Vec<u64> = ctx.runs.clone().collect();
         let mut summaries = Vec::with_capacity(CASES.len());

@@ -1,20 +1,15 @@
-//! The registered scenarios. To add one: write `scenarios/<name>.rs` implementing
-//! [`Scenario`](crate::scenario::Scenario) and add one line to [`all`].
+//! The registered scenarios. To add one: write `<name>.rs` implementing
+//! [`Scenario`] and add one line to [`all`].
 
-mod bias_32;
-mod clutter;
-mod cv_polar;
-mod drag_bearing;
-mod gimpo;
-mod launch;
-mod maneuver_1d;
-mod rbs_landing;
-mod surveillance;
-
+use crate::error::ScenarioError;
 use crate::scenario::Scenario;
+use crate::{
+    bias_32, clutter, cv_polar, drag_bearing, gimpo, launch, maneuver_1d, rbs_landing, surveillance,
+};
 
-/// Every scenario, in `argus scenarios` order.
-pub(crate) fn all() -> Vec<Box<dyn Scenario>> {
+/// Every scenario, in listing order.
+#[must_use]
+pub fn all() -> Vec<Box<dyn Scenario>> {
     vec![
         Box::new(cv_polar::CvPolar),
         Box::new(gimpo::Gimpo),
@@ -30,6 +25,16 @@ pub(crate) fn all() -> Vec<Box<dyn Scenario>> {
 }
 
 /// The scenario called `name`.
-pub(crate) fn find(name: &str) -> Option<Box<dyn Scenario>> {
-    all().into_iter().find(|s| s.name() == name)
+///
+/// # Errors
+/// [`ScenarioError::UnknownScenario`], with the known names.
+pub fn find(name: &str) -> Result<Box<dyn Scenario>, ScenarioError> {
+    let mut all = all();
+    match all.iter().position(|s| s.name() == name) {
+        Some(i) => Ok(all.swap_remove(i)),
+        None => Err(ScenarioError::UnknownScenario {
+            name: name.to_owned(),
+            known: all.iter().map(|s| s.name()).collect(),
+        }),
+    }
 }

@@ -54,9 +54,10 @@ use rand_distr::{Distribution, OpenClosed01, Poisson, StandardUniform};
 use serde::{Deserialize, Serialize};
 
 use crate::campaign::{Campaign, Splittable, in_process};
-use crate::error::CliError;
+use crate::error::{ParamProblem, ScenarioError};
+use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{ParamSpec, Params, RunContext, Scenario};
+use crate::scenario::{RunContext, Scenario};
 
 /// The `surveillance` scenario.
 pub(crate) struct Surveillance;
@@ -151,13 +152,13 @@ fn between(rng: &mut ChaCha8Rng, (lo, hi): (f64, f64)) -> f64 {
 }
 
 impl Setup {
-    fn new(p: &Params) -> Result<Self, CliError> {
-        let pair = |lo: &str, hi: &str| -> Result<(f64, f64), CliError> {
+    fn new(p: &Params) -> Result<Self, ScenarioError> {
+        let pair = |lo: &str, hi: &str| -> Result<(f64, f64), ScenarioError> {
             let (a, b) = (p.get(lo)?, p.get(hi)?);
             if a > b {
-                return Err(CliError::Usage(format!(
-                    "--set {lo}={a} exceeds {hi}={b}: the range is empty"
-                )));
+                let reason = format!("exceeds {hi}={b}: the range is empty");
+                let problem = ParamProblem::Conflict { value: a, reason };
+                return Err(ScenarioError::param(lo, problem));
             }
             Ok((a, b))
         };
@@ -166,9 +167,11 @@ impl Setup {
         let range = p.get("range")?;
         let start_radius = p.get("start_radius")?;
         if start_radius > range {
-            return Err(CliError::Usage(format!(
-                "--set start_radius={start_radius} exceeds range={range}"
-            )));
+            let problem = ParamProblem::Conflict {
+                value: start_radius,
+                reason: format!("exceeds range={range}"),
+            };
+            return Err(ScenarioError::param("start_radius", problem));
         }
         let speed = pair("speed_min", "speed_max")?;
         let p_d = p.get("p_d")?;
@@ -255,7 +258,7 @@ impl Setup {
     /// The traffic of run `run`: `targets` aircraft present from 0 to beyond the last
     /// scan (the last segment runs half a period past `duration`, so the last scan is
     /// inside every trajectory).
-    fn truth(&self, run: u64) -> Result<Truth, CliError> {
+    fn truth(&self, run: u64) -> Result<Truth, ScenarioError> {
         let rng = &mut run_rng(self.truth_seed, run);
         let end = self.duration + 0.5 * self.period;
         let mut truth = Truth::new();
@@ -302,7 +305,7 @@ impl Setup {
     }
 
     /// The tracker's plots of every scan: the converted target plots, then the clutter.
-    fn plots(&self, truth: &Truth, rng: &mut ChaCha8Rng) -> Result<Vec<Vec<Plot>>, CliError> {
+    fn plots(&self, truth: &Truth, rng: &mut ChaCha8Rng) -> Result<Vec<Vec<Plot>>, ScenarioError> {
         let raw = generate_plots(truth, std::slice::from_ref(&self.radar), rng)?;
         let mut scans: Vec<Vec<Plot>> = vec![Vec::new(); self.scans];
         for p in &raw {
@@ -319,10 +322,10 @@ impl Setup {
             }
         }
         let count = if self.clutter > 0.0 {
-            Some(
-                Poisson::new(self.clutter)
-                    .map_err(|e| CliError::Usage(format!("--set clutter: {e}")))?,
-            )
+            Some(Poisson::new(self.clutter).map_err(|e| {
+                let reason = e.to_string();
+                ScenarioError::param("clutter", ParamProblem::Rejected { reason })
+            })?)
         } else {
             None
         };
@@ -338,7 +341,7 @@ impl Setup {
         Ok(scans)
     }
 
-    fn convert(&self, k: usize, range: f64, azimuth: f64) -> Result<Plot, CliError> {
+    fn convert(&self, k: usize, range: f64, azimuth: f64) -> Result<Plot, ScenarioError> {
         let c = convert_polar(
             range,
             azimuth,
@@ -364,7 +367,7 @@ impl Setup {
         config: &TrackerConfig,
         scans: &[Vec<Plot>],
         truth: &[Vec<(TargetId, Vector<2>)>],
-    ) -> Result<ConfigRun, CliError> {
+    ) -> Result<ConfigRun, ScenarioError> {
         let mut tracker = Tracker::new(config.clone())?;
         let mut scores = Vec::with_capacity(scans.len());
         let mut track_scans = Vec::with_capacity(scans.len());
@@ -549,12 +552,12 @@ impl Scenario for Surveillance {
         ]
     }
 
-    fn scene(&self, params: &Params) -> Result<(Truth, Vec<SensorSpec>), CliError> {
+    fn scene(&self, params: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {
         let s = Setup::new(params)?;
         Ok((s.truth(0)?, vec![s.radar.clone()]))
     }
 
-    fn run(&self, ctx: &RunContext) -> Result<Report, CliError> {
+    fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
         let records = Splittable::records(self, ctx)?;
         self.reduce_records(&ctx.params, &in_process(records, &ctx.runs))
     }
@@ -568,11 +571,11 @@ impl Campaign for Surveillance {
     type Setup = Setup;
     type Run = SurvRun;
 
-    fn setup(&self, params: &Params) -> Result<Setup, CliError> {
+    fn setup(&self, params: &Params) -> Result<Setup, ScenarioError> {
         Setup::new(params)
     }
 
-    fn one_run(&self, s: &Setup, run: u64, rng: &mut ChaCha8Rng) -> Result<SurvRun, CliError> {
+    fn one_run(&self, s: &Setup, run: u64, rng: &mut ChaCha8Rng) -> Result<SurvRun, ScenarioError> {
         let truth = s.truth(run)?;
         let scans = s.plots(&truth, rng)?;
         let truth_xy = (0..s.scans)
@@ -584,21 +587,24 @@ impl Campaign for Surveillance {
                         let x = tr.state_at(s.time(k))?;
                         Ok((*id, Vector::<2>::new(x.position.x, x.position.y)))
                     })
-                    .collect::<Result<Vec<_>, CliError>>()
+                    .collect::<Result<Vec<_>, ScenarioError>>()
             })
-            .collect::<Result<Vec<_>, CliError>>()?;
+            .collect::<Result<Vec<_>, ScenarioError>>()?;
         let configs = s
             .trackers
             .iter()
             .map(|c| s.track(c, &scans, &truth_xy))
-            .collect::<Result<Vec<_>, CliError>>()?;
+            .collect::<Result<Vec<_>, ScenarioError>>()?;
         Ok(SurvRun { configs })
     }
 
     #[allow(clippy::too_many_lines)]
-    fn reduce(&self, s: &Setup, runs: &[SurvRun]) -> Result<Report, CliError> {
+    fn reduce(&self, s: &Setup, runs: &[SurvRun]) -> Result<Report, ScenarioError> {
         if runs.is_empty() {
-            return Err(CliError::Usage("surveillance: no runs".into()));
+            return Err(ScenarioError::Degenerate {
+                scenario: "surveillance",
+                message: "no runs".into(),
+            });
         }
         let n_runs = runs.len() as f64;
         let (c, p) = (s.ospa.cutoff(), s.ospa.order());
@@ -608,11 +614,11 @@ impl Campaign for Surveillance {
         let times: Vec<f64> = (0..s.scans).map(|k| s.time(k)).collect();
         let after: Vec<usize> = (0..s.scans).filter(|&k| s.time(k) >= s.warmup).collect();
         if after.is_empty() {
-            return Err(CliError::Usage(format!(
-                "--set warmup={} leaves no scan (the last is at {} s)",
-                s.warmup,
-                s.time(s.scans - 1)
-            )));
+            let problem = ParamProblem::Conflict {
+                value: s.warmup,
+                reason: format!("leaves no scan (the last is at {} s)", s.time(s.scans - 1)),
+            };
+            return Err(ScenarioError::param("warmup", problem));
         }
         let mut rows = vec![
             Row::new("gospa_no_tracks", "GOSPA with no tracks", no_tracks, "m").note(format!(
@@ -628,9 +634,10 @@ impl Campaign for Surveillance {
         for (i, (key, label)) in CONFIGS.iter().enumerate() {
             let cfg: Vec<&ConfigRun> = runs.iter().filter_map(|r| r.configs.get(i)).collect();
             if cfg.len() != runs.len() {
-                return Err(CliError::Usage(format!(
-                    "surveillance: a run record lacks configuration {key}"
-                )));
+                return Err(ScenarioError::Degenerate {
+                    scenario: "surveillance",
+                    message: format!("a run record lacks configuration {key}"),
+                });
             }
             let score = |k: usize, f: &dyn Fn(&ScanScore) -> f64| -> f64 {
                 cfg.iter()

@@ -14,11 +14,11 @@
 #![allow(non_snake_case)] // the papers' matrix names
 
 use argus_core_math::{Gaussian, Matrix, Vector};
-use argus_registration::simulation::{RunRecord, ScenarioConfig, Summary, run};
 use argus_registration::{
     BiasEstimator, BiasedLocalFilter, BiasedTrack, Initiation, Linearization, position_matrix,
     pseudo_measurement,
 };
+use argus_scenarios::experiments::bias_32::{RunRecord, ScenarioConfig, Summary, run};
 use nalgebra::{DMatrix, DVector};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -9,7 +9,7 @@
 
 #![allow(clippy::unwrap_used)] // test code: a failure should panic with its message
 
-use argus_registration::simulation::{ScenarioConfig, run};
+use argus_scenarios::experiments::bias_32::{ScenarioConfig, run};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};

@@ -1,11 +1,11 @@
 //! Seed 001 "drag-bearing" on a reduced Monte Carlo count (the full count runs through
 //! `argus run drag-bearing`): EKF and truncated second-order filter, plain and with GLRT
 //! detection + MRAS input estimation, on a quadratic-drag target seen in bearing only.
-//! Scenario and every chosen parameter: `argus_adaptive::maneuver::drag_bearing` docs.
+//! Scenario and every chosen parameter: `argus_scenarios::experiments::drag_bearing` docs.
 #![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
 
 use argus_adaptive::AdaptiveError;
-use argus_adaptive::maneuver::drag_bearing::{
+use argus_scenarios::experiments::drag_bearing::{
     DragBearingConfig, DragFilter, McSummary, simulate_run,
 };
 

@@ -1,12 +1,16 @@
-//! Seed 001 "maneuver-1d": the library Monte Carlo (`maneuver::maneuver_1d`, used by
-//! `argus run maneuver-1d`) against the test-local implementation, and the per-switch
-//! detection-delay distribution (issue 8: "detection within 0.5 s of each switch").
+//! Seed 001 "maneuver-1d": the scenario's Monte Carlo (`experiments::maneuver_1d`, used
+//! by `argus run maneuver-1d`) against the independent implementation of argus-adaptive's
+//! tests, and the per-switch detection-delay distribution (issue 8: "detection within
+//! 0.5 s of each switch").
 #![allow(clippy::unwrap_used, clippy::expect_used, missing_docs)]
 
+// The independent 1-D simulation and filters of argus-adaptive's GLRT tests (one copy,
+// shared rather than written twice).
+#[path = "../../adaptive/tests/glrt_common/mod.rs"]
 mod glrt_common;
 
 use argus_adaptive::Compensation;
-use argus_adaptive::maneuver::maneuver_1d::{
+use argus_scenarios::experiments::maneuver_1d::{
     CASE1, CASE2, Maneuver1dConfig, monte_carlo, run_filters, simulate,
 };
 

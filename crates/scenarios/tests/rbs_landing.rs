@@ -4,7 +4,7 @@
 
 use std::sync::OnceLock;
 
-use argus_adaptive::decoupled_scenario::{
+use argus_scenarios::experiments::rbs_landing::{
     FilterKind, McSummary, RbsLandingConfig, run_monte_carlo, simulate_run,
 };
 

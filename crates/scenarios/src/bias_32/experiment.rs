@@ -9,10 +9,12 @@
 
 use argus_core_math::{Gaussian, Matrix, SpdFactor, Vector};
 
-use crate::error::{RegistrationError, finite, positive};
-use crate::local::{BiasedTrack, position_matrix};
-use crate::polar::{Linearization, PolarSensor};
-use crate::registrar::{Initiation, Registrar, RegistrarConfig};
+use argus_registration::{
+    BiasedTrack, Initiation, Linearization, PolarSensor, Registrar, RegistrarConfig,
+    RegistrationError, position_matrix,
+};
+
+use crate::checks::{registration_finite as finite, registration_positive as positive};
 use argus_sensors::PolarBias;
 
 /// One sensor of the scenario: the radar, its true bias and its schedule.
@@ -248,7 +250,7 @@ pub struct RunRecord {
     pub proposed_updates: usize,
 }
 
-fn sq_by_component(est: &crate::BiasEstimator, truth: &[f64]) -> [f64; 4] {
+fn sq_by_component(est: &argus_registration::BiasEstimator, truth: &[f64]) -> [f64; 4] {
     let b = est.stacked();
     let mut out = [0.0; 4];
     for (i, t) in truth.iter().enumerate() {
@@ -260,7 +262,7 @@ fn sq_by_component(est: &crate::BiasEstimator, truth: &[f64]) -> [f64; 4] {
     out
 }
 
-fn var_by_component(est: &crate::BiasEstimator) -> [f64; 4] {
+fn var_by_component(est: &argus_registration::BiasEstimator) -> [f64; 4] {
     let sig = est.covariance();
     let mut out = [0.0; 4];
     for i in 0..sig.nrows() {
@@ -300,7 +302,8 @@ pub fn run(
     let draw4 = |normal: &mut dyn FnMut() -> f64| Vector::<4>::from_fn(|_, _| normal());
     // Reference tracks on bias-free plots for the recorded targets (sensor 0).
     let mut reference: Vec<Option<BiasedTrack>> = vec![None; config.recorded.len()];
-    let mut ref_pending: Vec<Option<crate::ConvertedPlot>> = vec![None; config.recorded.len()];
+    let mut ref_pending: Vec<Option<argus_registration::ConvertedPlot>> =
+        vec![None; config.recorded.len()];
     if config.initiation == Initiation::Given {
         for s in 0..s_count {
             for t in 0..n {

@@ -42,9 +42,9 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::error::AdaptiveError;
-use crate::glrt::{FailureKind, GlrtConfig};
-use crate::maneuver::{Compensation, ManeuverFilter, ManeuverState, ModelInput};
+use argus_adaptive::{
+    AdaptiveError, Compensation, FailureKind, GlrtConfig, ManeuverFilter, ManeuverState, ModelInput,
+};
 
 /// Feet to metres.
 pub const FT: f64 = 0.3048;

@@ -25,9 +25,9 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::error::AdaptiveError;
-use crate::glrt::{FailureKind, GlrtConfig};
-use crate::maneuver::{Compensation, ManeuverFilter, ManeuverState, ModelInput};
+use argus_adaptive::{
+    AdaptiveError, Compensation, FailureKind, GlrtConfig, ManeuverFilter, ManeuverState, ModelInput,
+};
 
 /// Case 1: acceleration on 2.0–6.0 s.
 pub const CASE1: &[(f64, f64)] = &[(2.0, 6.0)];

@@ -22,13 +22,13 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::adaptive_r::{
-    AdaptiveDecoupledFilter, AdaptiveRConfig, AdaptiveState, REstimate, Warmup,
+use argus_adaptive::{
+    AdaptiveDecoupledFilter, AdaptiveError, AdaptiveRConfig, AdaptiveState, ConvertedPlot,
+    CoupledCvFilter, DecoupledEstimate, DecoupledFilter, FrameHandling, REstimate, SphericalPlot,
+    Warmup,
 };
-use crate::coupled::CoupledCvFilter;
-use crate::decoupled::{DecoupledEstimate, DecoupledFilter, FrameHandling};
-use crate::decoupled_plot::{ConvertedPlot, SphericalPlot};
-use crate::error::{AdaptiveError, positive};
+
+use crate::checks::adaptive_positive as positive;
 
 /// The filters run side by side on the same plots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -178,11 +178,11 @@ impl RbsLandingConfig {
             });
         }
         positive(self.ground_distance, "ground_distance")?;
-        crate::error::finite(self.runway_y, "runway_y")?;
+        crate::checks::adaptive_finite(self.runway_y, "runway_y")?;
         positive(self.accel_sd, "accel_sd")?;
         positive(self.init_pos_sd, "init_pos_sd")?;
         positive(self.init_vel_sd, "init_vel_sd")?;
-        crate::error::finite(self.snr_fluctuation_db, "snr_fluctuation_db")?;
+        crate::checks::adaptive_finite(self.snr_fluctuation_db, "snr_fluctuation_db")?;
         if self.snr_fluctuation_db < 0.0 {
             return Err(AdaptiveError::InvalidParameter {
                 what: "snr_fluctuation_db",
@@ -325,7 +325,7 @@ pub fn simulate_run(
     let p0 = Matrix::<6, 6>::from_diagonal(&init_sd.component_mul(&init_sd));
     let g0 = Gaussian::new(x0, p0)?;
     let sph0 = SphericalPlot::from_cartesian(&pos_of(&x0))?;
-    let frame0 = crate::decoupled_plot::aligned_frame(sph0.azimuth(), sph0.elevation());
+    let frame0 = argus_adaptive::aligned_frame(sph0.azimuth(), sph0.elevation());
     let r0 = ConvertedPlot::from_spherical(&sph0, &model.sigmas_at_range(sph0.range()))?
         .cartesian_noise();
 
