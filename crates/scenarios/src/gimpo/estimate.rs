@@ -1,0 +1,309 @@
+//! gimpo's estimators and one run: the paper's IMM with fixed R, its multi-IMM noise
+//! estimator, and the variational, evidence and difference estimators of `argus-imm`,
+//! each from every start factor.
+
+use argus_core_math::Vector;
+use argus_filters::{Kf, two_point_cv2};
+use argus_imm::{
+    DifferenceEstimate, DifferenceNoiseImm, EvidenceEstimate, EvidenceNoiseImm, ImmEstimate,
+    MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion, PolarPlot,
+    UnbiasedConversion, VariationalEstimate, VariationalNoiseImm,
+};
+use argus_motion_models::PlanarModel;
+use argus_sim::{Measurement, SensorSpec, Trajectory, Truth, generate_plots};
+
+use super::{PaperImm, STARTS, paper_imm};
+use crate::error::ScenarioError;
+use crate::params::Params;
+
+/// Everything one run records, per step after the two initialising plots.
+#[derive(Debug, Clone, Default)]
+pub(super) struct RunOut {
+    /// Squared position error of the fixed-R IMM, per start factor.
+    pub(super) fixed_se: [Vec<f64>; 5],
+    /// Mode probabilities (CV, CT+, CT−) of the IMM with the true R.
+    pub(super) mu: Vec<[f64; 3]>,
+    /// Paper's multi-IMM: squared error and variance ratio, per start.
+    pub(super) multi_se: [Vec<f64>; 5],
+    pub(super) multi_ratio: [Vec<f64>; 5],
+    /// Variational estimator: squared error and (range, azimuth) ratios, per start.
+    pub(super) vb_se: [Vec<f64>; 5],
+    pub(super) vb_ratio: [Vec<[f64; 2]>; 5],
+    /// Evidence estimator: squared error and (range, azimuth) ratios, per start.
+    pub(super) ev_se: [Vec<f64>; 5],
+    pub(super) ev_ratio: [Vec<[f64; 2]>; 5],
+    /// Difference estimator: squared error and (range, azimuth) ratios, per start.
+    pub(super) df_se: [Vec<f64>; 5],
+    pub(super) df_ratio: [Vec<[f64; 2]>; 5],
+    /// Run 0 only: truth, converted plots and the multi-IMM (start 1) estimate.
+    pub(super) track: Vec<[f64; 6]>,
+}
+
+/// One run's polar plots in time order.
+///
+/// # Errors
+/// The simulation's error.
+pub(super) fn simulate(
+    truth: &Truth,
+    sensors: &[SensorSpec],
+    rng: &mut argus_sim::ChaCha8Rng,
+) -> Result<Vec<(f64, PolarPlot)>, ScenarioError> {
+    Ok(generate_plots(truth, sensors, rng)?
+        .iter()
+        .filter_map(|pl| match pl.measurement {
+            Measurement::Polar { range, azimuth } => {
+                PolarPlot::new(range, azimuth).ok().map(|x| (pl.time, x))
+            }
+            _ => None,
+        })
+        .collect())
+}
+
+/// Squared position error of `[x, vx, y, vy]` against the truth.
+fn se(x: &Vector<4>, tr: &Vector<4>) -> f64 {
+    (x[0] - tr[0]).powi(2) + (x[2] - tr[2]).powi(2)
+}
+
+/// One run's plots and truth, as the estimators read them.
+struct RunInput<'a> {
+    traj: &'a Trajectory,
+    first: &'a (f64, PolarPlot),
+    second: &'a (f64, PolarPlot),
+    /// Time of the second plot, where the estimators start.
+    t2: f64,
+    /// The plots after the two initialising ones.
+    rest: &'a [(f64, PolarPlot)],
+}
+
+impl RunInput<'_> {
+    /// The two-point start under the noise variances `var`, modes equally likely.
+    fn init(&self, var: &NoiseVariances) -> Result<ImmEstimate<4, 3>, ScenarioError> {
+        let ((t1, p1), (t2, p2)) = (self.first, self.second);
+        let (z1, r1) = argus_imm::unbiased_conversion(p1, var)?;
+        let (z2, r2) = argus_imm::unbiased_conversion(p2, var)?;
+        let g = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1)?;
+        Ok(ImmEstimate::from_common(g, [1.0 / 3.0; 3])?)
+    }
+
+    /// The true `[x, vx, y, vy]` at `t`.
+    fn truth_pos(&self, t: f64) -> Result<Vector<4>, ScenarioError> {
+        Ok(self.traj.state_at(t)?.state_2d())
+    }
+}
+
+/// The estimators of the campaign, built once from the parameters.
+pub(super) struct Estimators {
+    true_var: NoiseVariances,
+    imm: PaperImm,
+    multi: MultiImm<Kf<PlanarModel>, 4, 3, 5>,
+    vb: VariationalNoiseImm<Kf<PlanarModel>, 4, 3>,
+    ev: EvidenceNoiseImm<Kf<PlanarModel>, 4, 3>,
+    df: DifferenceNoiseImm<Kf<PlanarModel>, 4, 3>,
+    conv: UnbiasedConversion<4>,
+    /// The multi-IMM's clip of the reference change per step.
+    pub(super) clip: Option<f64>,
+}
+
+impl Estimators {
+    /// The estimators of the parameters `p`.
+    ///
+    /// # Errors
+    /// A parameter the models or estimators refuse.
+    pub(super) fn new(p: &Params) -> Result<Self, ScenarioError> {
+        let true_var =
+            NoiseVariances::from_sigmas(p.get("sigma_r")?, p.get("sigma_az_deg")?.to_radians())?;
+        let imm = paper_imm(p.get("omega_deg")?)?;
+        let clip = match p.get("clip")? {
+            c if c > 0.0 => Some(c),
+            _ => None,
+        };
+        let multi = MultiImm::new(imm.clone(), NoiseGrid::<5>::common(p.get("p")?)?, clip)?;
+        let vb = VariationalNoiseImm::new(imm.clone(), p.get("vb_rho")?)?;
+        let ev = EvidenceNoiseImm::new(
+            imm.clone(),
+            p.get("ev_spacing")?,
+            p.get("ev_rho")?,
+            match p.get("ev_clip")? {
+                c if c > 0.0 => Some(c),
+                _ => None,
+            },
+        )?;
+        let ev = match p.get("ev_settle")? {
+            k if k >= 1.0 => ev.with_post_fit(k.round() as usize),
+            _ => ev,
+        };
+        let ev = if p.get("ev_observed")? >= 0.5 {
+            ev.with_observed_information()
+        } else {
+            ev
+        };
+        let df = DifferenceNoiseImm::new(imm.clone(), p.get("df_rho")?)?;
+        Ok(Self {
+            true_var,
+            imm,
+            multi,
+            vb,
+            ev,
+            df,
+            conv: UnbiasedConversion::<4>::new(0, 2)?,
+            clip,
+        })
+    }
+
+    /// Every estimator from every start over one run's `plots` of the trajectory `traj`.
+    ///
+    /// # Errors
+    /// [`ScenarioError::Degenerate`] for fewer than two plots, else the estimators' errors.
+    pub(super) fn run(
+        &self,
+        traj: &Trajectory,
+        run: u64,
+        plots: &[(f64, PolarPlot)],
+    ) -> Result<RunOut, ScenarioError> {
+        let (Some(first), Some(second)) = (plots.first(), plots.get(1)) else {
+            return Err(ScenarioError::Degenerate {
+                scenario: "gimpo",
+                message: "fewer than two plots".into(),
+            });
+        };
+        let inp = RunInput {
+            traj,
+            first,
+            second,
+            t2: second.0,
+            rest: plots.get(2..).unwrap_or(&[]),
+        };
+        let mut out = RunOut::default();
+        for (i, f) in STARTS.iter().enumerate() {
+            let var0 = NoiseVariances::new(self.true_var.range() * f, self.true_var.azimuth() * f)?;
+            self.fixed(&inp, i, var0, &mut out)?;
+            self.multi(&inp, i, var0, run, &mut out)?;
+            self.variational(&inp, i, var0, &mut out)?;
+            self.evidence(&inp, i, var0, &mut out)?;
+            self.difference(&inp, i, var0, &mut out)?;
+        }
+        Ok(out)
+    }
+
+    /// (a) The IMM with R fixed at `var0`.
+    fn fixed(
+        &self,
+        inp: &RunInput<'_>,
+        i: usize,
+        var0: NoiseVariances,
+        out: &mut RunOut,
+    ) -> Result<(), ScenarioError> {
+        let mut est = inp.init(&var0)?;
+        let mut prev = inp.t2;
+        for (t, pl) in inp.rest {
+            let (m, z) = self.conv.convert(pl, &var0)?;
+            est = self.imm.step(&est, t - prev, &m, &z)?.estimate;
+            prev = *t;
+            let c = est.combined()?;
+            out.fixed_se[i].push(se(c.mean(), &inp.truth_pos(*t)?));
+            if i == 2 {
+                out.mu.push(est.mode_probabilities());
+            }
+        }
+        Ok(())
+    }
+
+    /// (b) The paper's multi-IMM from `var0` (run 0, start 1: also the track of Fig. 3).
+    fn multi(
+        &self,
+        inp: &RunInput<'_>,
+        i: usize,
+        var0: NoiseVariances,
+        run: u64,
+        out: &mut RunOut,
+    ) -> Result<(), ScenarioError> {
+        let mut mest = MultiImmEstimate::new(inp.init(&var0)?, var0);
+        let mut prev = inp.t2;
+        for (t, pl) in inp.rest {
+            mest = self.multi.step(&mest, t - prev, pl, &self.conv)?.estimate;
+            prev = *t;
+            let c = mest.combined()?;
+            let tr = inp.truth_pos(*t)?;
+            out.multi_se[i].push(se(c.mean(), &tr));
+            out.multi_ratio[i].push(mest.reference().range() / self.true_var.range());
+            if i == 2 && run == 0 {
+                let (z, _) = argus_imm::unbiased_conversion(pl, mest.reference())?;
+                out.track
+                    .push([tr[0], tr[2], z[0], z[1], c.mean()[0], c.mean()[2]]);
+            }
+        }
+        Ok(())
+    }
+
+    /// The variational estimator from `var0`.
+    fn variational(
+        &self,
+        inp: &RunInput<'_>,
+        i: usize,
+        var0: NoiseVariances,
+        out: &mut RunOut,
+    ) -> Result<(), ScenarioError> {
+        let mut vest = VariationalEstimate::new(inp.init(&var0)?, var0, 2.0)?;
+        let mut prev = inp.t2;
+        for (t, pl) in inp.rest {
+            vest = self.vb.step(&vest, t - prev, pl, &self.conv)?.0;
+            prev = *t;
+            let c = vest.imm().combined()?;
+            out.vb_se[i].push(se(c.mean(), &inp.truth_pos(*t)?));
+            let v = vest.variances()?;
+            out.vb_ratio[i].push([
+                v.range() / self.true_var.range(),
+                v.azimuth() / self.true_var.azimuth(),
+            ]);
+        }
+        Ok(())
+    }
+
+    /// The evidence estimator from `var0`.
+    fn evidence(
+        &self,
+        inp: &RunInput<'_>,
+        i: usize,
+        var0: NoiseVariances,
+        out: &mut RunOut,
+    ) -> Result<(), ScenarioError> {
+        let mut eest = EvidenceEstimate::new(inp.init(&var0)?, var0, 2.0)?;
+        let mut prev = inp.t2;
+        for (t, pl) in inp.rest {
+            eest = self.ev.step(&eest, t - prev, pl, &self.conv)?;
+            prev = *t;
+            let c = eest.combined()?;
+            out.ev_se[i].push(se(c.mean(), &inp.truth_pos(*t)?));
+            let v = eest.variances();
+            out.ev_ratio[i].push([
+                v.range() / self.true_var.range(),
+                v.azimuth() / self.true_var.azimuth(),
+            ]);
+        }
+        Ok(())
+    }
+
+    /// The difference estimator from `var0`.
+    fn difference(
+        &self,
+        inp: &RunInput<'_>,
+        i: usize,
+        var0: NoiseVariances,
+        out: &mut RunOut,
+    ) -> Result<(), ScenarioError> {
+        let mut dest = DifferenceEstimate::new(inp.init(&var0)?, var0, 2.0)?;
+        let mut prev = inp.t2;
+        for (t, pl) in inp.rest {
+            dest = self.df.step(&dest, t - prev, pl, &self.conv)?.0;
+            prev = *t;
+            let c = dest.imm().combined()?;
+            out.df_se[i].push(se(c.mean(), &inp.truth_pos(*t)?));
+            let v = dest.variances()?;
+            out.df_ratio[i].push([
+                v.range() / self.true_var.range(),
+                v.azimuth() / self.true_var.azimuth(),
+            ]);
+        }
+        Ok(())
+    }
+}
