@@ -11,6 +11,7 @@
 //! the tests' runs. Results: `docs/papers/001-drag-bearing.md`.
 
 pub mod experiment;
+mod statistics;
 
 use argus_adaptive::AdaptiveError;
 use argus_core_math::Vector;

@@ -433,11 +433,7 @@ fn figures(st: &Stats<'_>, m: &Means) -> Vec<Figure> {
                 .enumerate()
                 .map(|(j, l)| Line {
                     label: (*l).into(),
-                    points: times
-                        .iter()
-                        .zip(mean_mu)
-                        .map(|(t, m)| (*t, m[j]))
-                        .collect(),
+                    points: times.iter().zip(mean_mu).map(|(t, m)| (*t, m[j])).collect(),
                     style: LineStyle::Solid,
                 })
                 .collect(),
