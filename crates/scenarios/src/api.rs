@@ -4,11 +4,12 @@
 use std::ops::Range;
 
 use crate::campaign::{RecordText, in_process};
+use crate::context::{Progress, RunContext};
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
 use crate::registry::all;
 use crate::report::Report;
-use crate::scenario::{Progress, RunContext, Scenario};
+use crate::scenario::Scenario;
 
 /// What a listing shows of a scenario.
 #[derive(Debug, Clone, PartialEq)]

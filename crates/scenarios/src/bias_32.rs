@@ -19,10 +19,11 @@ use argus_sim::{
 use experiment::{ScenarioConfig, Summary, run};
 use rand_distr::{Distribution, StandardNormal};
 
+use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{RunContext, Scenario};
+use crate::scenario::Scenario;
 
 pub(crate) struct Bias32;
 
@@ -552,8 +553,8 @@ mod tests {
     #![allow(clippy::unwrap_used)] // test code: a failure should panic with its message
 
     use super::*;
+    use crate::context::NoProgress;
     use crate::error::ParamProblem;
-    use crate::scenario::NoProgress;
 
     fn ctx(settings: &[&str]) -> Result<RunContext<'static>, ScenarioError> {
         let settings: Vec<String> = settings.iter().map(|s| (*s).to_owned()).collect();

@@ -18,10 +18,10 @@ use argus_sim::{ChaCha8Rng, monte_carlo};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
+use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::Params;
 use crate::report::Report;
-use crate::scenario::RunContext;
 
 /// A Monte Carlo campaign split into independent runs and a reduce step.
 pub trait Campaign: Sync {

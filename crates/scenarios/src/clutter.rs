@@ -22,11 +22,12 @@ use argus_sensors::CartesianPosition;
 use argus_sim::{ChaCha8Rng, Metrics, RunRecord, SensorSpec, StepRecord, Truth, monte_carlo};
 use rand_distr::{Distribution, Exp1, Poisson, StandardNormal, Uniform};
 
+use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::estimator::cv_kf;
 use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{RunContext, Scenario};
+use crate::scenario::Scenario;
 
 /// The `clutter` scenario.
 pub(crate) struct Clutter;

@@ -21,10 +21,11 @@ use crate::error::ScenarioError;
 use argus_filters::two_point_cv2;
 
 use crate::campaign::{Campaign, Splittable, in_process};
+use crate::context::RunContext;
 use crate::estimator::{CvKf, cv_kf, position, step, unbiased};
 use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{RunContext, Scenario};
+use crate::scenario::Scenario;
 
 /// The `cv-polar` scenario.
 pub(crate) struct CvPolar;

@@ -10,8 +10,8 @@
 //! uses `ChaCha8Rng::seed_from_u64((s − 1)·2³² + i)`, so the default seed 1 reproduces
 //! the tests' runs. Results: `docs/papers/001-drag-bearing.md`.
 
-pub mod experiment;
-mod statistics;
+pub(crate) mod experiment;
+pub(crate) mod statistics;
 
 use argus_adaptive::AdaptiveError;
 use argus_core_math::Vector;
@@ -19,14 +19,14 @@ use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
     monte_carlo,
 };
-use experiment::{
-    DragBearingConfig, DragFilter, DragRun, McSummary, reference_trajectory, simulate_run,
-};
+use experiment::{DragBearingConfig, DragFilter, DragRun, reference_trajectory, simulate_run};
+use statistics::McSummary;
 
+use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{RunContext, Scenario};
+use crate::scenario::Scenario;
 
 /// The scenario.
 pub(crate) struct DragBearing;

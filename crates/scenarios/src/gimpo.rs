@@ -14,26 +14,20 @@ mod estimate;
 mod report;
 
 use argus_core_math::Vector;
-use argus_filters::Kf;
-use argus_imm::{Imm, MarkovMatrix};
-use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
     generate_plots, monte_carlo,
 };
 
+use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
 use crate::report::Report;
-use crate::scenario::{RunContext, Scenario};
+use crate::scenario::Scenario;
 
 /// The `gimpo` scenario.
 pub(crate) struct Gimpo;
 
-/// Initial (or fixed) noise factors of the paper: R = f × truth.
-const STARTS: [f64; 5] = [0.2, 0.5, 1.0, 1.5, 2.0];
-/// Share of the time left out of the RMS (paper §3.4: the first 25 %).
-const WARMUP: f64 = 0.25;
 /// Table 1 of seed 000: (duration s, turn rate deg/s; 0 = CV).
 const SEGMENTS: [(f64, f64); 10] = [
     (330.0, 0.0),
@@ -47,25 +41,6 @@ const SEGMENTS: [(f64, f64); 10] = [
     (70.0, -0.5),
     (86.0, 0.0),
 ];
-/// Published / reference values: the independent re-implementation quoted in issue 4
-/// (100 runs, p = 0.1, ±5 % clip): final variance ratio from each start.
-const REFERENCE_RATIO: [f64; 5] = [0.98, 1.01, 1.03, 1.05, 1.07];
-
-/// The paper's IMM: CV and CT ±ω, Kalman filters on the planar models.
-type PaperImm = Imm<Kf<PlanarModel>, 4, 3>;
-
-/// The paper's IMM (§3.1): CV σv = 0.1 m/s², CT ±ω σv = 0.5 m/s², Markov matrix eq (20).
-fn paper_imm(omega_deg: f64) -> Result<PaperImm, ScenarioError> {
-    let ct = |w: f64| -> Result<Kf<PlanarModel>, ScenarioError> {
-        Ok(Kf::new(PlanarModel::from(
-            CoordinatedTurn::from_degrees_per_second(w, 0.5)?,
-        )))
-    };
-    let cv = Kf::new(PlanarModel::from(Cv2D::discrete(0.1)?));
-    let pi = MarkovMatrix::new([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]])?;
-    Ok(Imm::new([cv, ct(omega_deg)?, ct(-omega_deg)?], pi)?)
-}
-
 impl Scenario for Gimpo {
     fn name(&self) -> &'static str {
         "gimpo"

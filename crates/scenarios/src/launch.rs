@@ -21,10 +21,11 @@ use argus_sim::{
 };
 use rand_distr::{Distribution, StandardNormal};
 
+use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{RunContext, Scenario};
+use crate::scenario::Scenario;
 
 /// The `launch` scenario.
 pub(crate) struct Launch;
@@ -331,7 +332,7 @@ impl Scenario for Launch {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario::NoProgress;
+    use crate::context::NoProgress;
 
     #[test]
     fn ekf_tracks_the_launch_vehicle() {

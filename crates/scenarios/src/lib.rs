@@ -31,6 +31,7 @@
 mod api;
 pub mod campaign;
 mod checks;
+mod context;
 mod error;
 pub mod estimator;
 mod params;
@@ -52,15 +53,20 @@ mod surveillance;
 /// that report them, for the tests and for exploration.
 pub mod experiments {
     pub use crate::bias_32::experiment as bias_32;
-    pub use crate::drag_bearing::experiment as drag_bearing;
+    /// Seed 001's drag-bearing Monte Carlo: configuration, one run, statistics.
+    pub mod drag_bearing {
+        pub use crate::drag_bearing::experiment::*;
+        pub use crate::drag_bearing::statistics::McSummary;
+    }
     pub use crate::maneuver_1d::experiment as maneuver_1d;
     pub use crate::rbs_landing::experiment as rbs_landing;
 }
 
 pub use api::{RunOutput, ScenarioInfo, list, merge, run};
 pub use campaign::{Campaign, RecordText, Splittable, in_process};
+pub use context::{NoProgress, Progress, RunContext};
 pub use error::{ParamProblem, ScenarioError};
 pub use params::{ParamSpec, Params};
 pub use registry::{all, find};
 pub use report::{Figure, Line, LineStyle, Report, Row, Series};
-pub use scenario::{NoProgress, Progress, RunContext, Scenario};
+pub use scenario::Scenario;

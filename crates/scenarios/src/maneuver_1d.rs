@@ -22,10 +22,11 @@ use experiment::{
     CASE1, CASE2, Maneuver1dConfig, Outcome1d, Stats1d, quantile, run_filters, simulate,
 };
 
+use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{RunContext, Scenario};
+use crate::scenario::Scenario;
 
 /// The scenario.
 pub(crate) struct Maneuver1d;

@@ -18,10 +18,11 @@ use argus_sim::{
 use experiment::{FILTERS, FilterKind, McSummary, RbsLandingConfig, RunSeries, simulate_run};
 use rayon::prelude::*;
 
+use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
-use crate::scenario::{RunContext, Scenario};
+use crate::scenario::Scenario;
 
 /// The scenario.
 pub(crate) struct RbsLanding;

@@ -1,54 +1,13 @@
 //! The scenario framework: a paper experiment implements [`Scenario`] in its own file
 //! and is registered with one line in [`crate::all`].
 
-use std::ops::Range;
-
 use argus_sim::{SensorSpec, Truth};
 
 use crate::campaign::Splittable;
+use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
 use crate::report::Report;
-
-/// Progress of a campaign, ticked once per run (from rayon's threads, hence `Sync`).
-/// The command draws a bar with it; [`NoProgress`] ignores it.
-pub trait Progress: Sync {
-    /// One step done.
-    fn tick(&self);
-    /// The campaign is done (called once, after the last tick).
-    fn finish(&self) {}
-}
-
-/// A [`Progress`] that does nothing.
-#[derive(Debug, Clone, Copy, Default)]
-pub struct NoProgress;
-
-impl Progress for NoProgress {
-    fn tick(&self) {}
-}
-
-/// What a scenario run gets.
-#[derive(Clone)]
-pub struct RunContext<'a> {
-    /// Run indices to compute (`0..N`, or a sub-range of a split campaign).
-    pub runs: Range<u64>,
-    /// Base seed.
-    pub seed: u64,
-    /// Validated parameters.
-    pub params: Params,
-    /// Progress handle: ticked once per run.
-    pub progress: &'a dyn Progress,
-}
-
-impl std::fmt::Debug for RunContext<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("RunContext")
-            .field("runs", &self.runs)
-            .field("seed", &self.seed)
-            .field("params", &self.params)
-            .finish_non_exhaustive()
-    }
-}
 
 /// A paper experiment (or the framework's own `cv-polar`).
 pub trait Scenario: Sync {

@@ -29,7 +29,7 @@
 //! - Detector: persistent input `P = 2`, window `M`, `N`, threshold `η`
 //!   ([`DragBearingConfig`]), [`Compensation::GlrtMras`].
 //!
-//! A run is a pure function of its seed ([`simulate_run`]); [`McSummary`] reduces runs.
+//! A run is a pure function of its seed ([`simulate_run`]); `McSummary` (in `statistics.rs`) reduces runs.
 //!
 //! # References
 //! Lee & Kim (1987), seed 001, §5.2 and Figs. 5–7; SPEC.md section 001 ("drag-bearing").
@@ -42,7 +42,6 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
-pub use super::statistics::McSummary;
 use argus_adaptive::{
     AdaptiveError, Compensation, FailureKind, GlrtConfig, ManeuverFilter, ManeuverState, ModelInput,
 };

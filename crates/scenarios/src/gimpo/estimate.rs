@@ -5,16 +5,32 @@
 use argus_core_math::Vector;
 use argus_filters::{Kf, two_point_cv2};
 use argus_imm::{
-    DifferenceEstimate, DifferenceNoiseImm, EvidenceEstimate, EvidenceNoiseImm, ImmEstimate,
-    MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion, PolarPlot,
+    DifferenceEstimate, DifferenceNoiseImm, EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate,
+    MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion, PolarPlot,
     UnbiasedConversion, VariationalEstimate, VariationalNoiseImm,
 };
-use argus_motion_models::PlanarModel;
+use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use argus_sim::{Measurement, SensorSpec, Trajectory, Truth, generate_plots};
 
-use super::{PaperImm, STARTS, paper_imm};
 use crate::error::ScenarioError;
 use crate::params::Params;
+
+/// Initial (or fixed) noise factors of the paper: R = f × truth.
+pub(super) const STARTS: [f64; 5] = [0.2, 0.5, 1.0, 1.5, 2.0];
+/// The paper's IMM: CV and CT ±ω, Kalman filters on the planar models.
+pub(super) type PaperImm = Imm<Kf<PlanarModel>, 4, 3>;
+
+/// The paper's IMM (§3.1): CV σv = 0.1 m/s², CT ±ω σv = 0.5 m/s², Markov matrix eq (20).
+pub(super) fn paper_imm(omega_deg: f64) -> Result<PaperImm, ScenarioError> {
+    let ct = |w: f64| -> Result<Kf<PlanarModel>, ScenarioError> {
+        Ok(Kf::new(PlanarModel::from(
+            CoordinatedTurn::from_degrees_per_second(w, 0.5)?,
+        )))
+    };
+    let cv = Kf::new(PlanarModel::from(Cv2D::discrete(0.1)?));
+    let pi = MarkovMatrix::new([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]])?;
+    Ok(Imm::new([cv, ct(omega_deg)?, ct(-omega_deg)?], pi)?)
+}
 
 /// Everything one run records, per step after the two initialising plots.
 #[derive(Debug, Clone, Default)]

@@ -3,7 +3,7 @@
 
 use std::f64::consts::PI;
 
-use super::{CONFIGS, ConfigRun, ScanScore, ScoreOf, Setup, SurvRun};
+use super::setup::{CONFIGS, ConfigRun, ScanScore, ScoreOf, Setup, SurvRun};
 use crate::error::{ParamProblem, ScenarioError};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
 

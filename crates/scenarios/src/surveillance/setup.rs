@@ -1,0 +1,397 @@
+//! The surveillance campaign's shared setup (radar, truth generator, tracker
+//! configurations), one run's plots and tracking, and the per-run records.
+
+use std::f64::consts::{PI, TAU};
+
+use argus_core_math::Vector;
+use argus_sensors::{ConversionMethod, convert_polar};
+use argus_sim::{
+    ChaCha8Rng, Detection, Gospa, KinematicState, Measurement, Ospa, Schedule, Segment, SensorId,
+    SensorKind, SensorSpec, TargetId, TrackScan, TrackStatistics, Trajectory, Truth,
+    generate_plots, run_rng,
+};
+use argus_tracker::{
+    AssociationConfig, EstimatorConfig, Plot, TrackStatus, Tracker, TrackerConfig,
+};
+use rand_distr::{Distribution, OpenClosed01, Poisson, StandardUniform};
+use serde::{Deserialize, Serialize};
+
+use crate::error::{ParamProblem, ScenarioError};
+use crate::params::Params;
+
+/// The tracker configurations compared: summary key prefix and legend label.
+pub(super) const CONFIGS: [(&str, &str); 4] = [
+    ("gnn_kf", "GNN, KF"),
+    ("gnn_imm", "GNN, IMM"),
+    ("jpda_kf", "JPDA, KF"),
+    ("jpda_imm", "JPDA, IMM"),
+];
+
+/// The radar's id in `argus_sim` and in the tracker.
+pub(super) const RADAR: u32 = 0;
+
+/// Clutter density floor given to JPDA when `clutter = 0` (it needs `λ > 0`): one false
+/// plot per thousand scans over the coverage.
+pub(super) const MIN_CLUTTER_PER_SCAN: f64 = 1e-3;
+
+/// Everything a campaign shares between runs, from the parameters.
+pub(crate) struct Setup {
+    pub(super) targets: usize,
+    pub(super) duration: f64,
+    pub(super) period: f64,
+    pub(super) scans: usize,
+    pub(super) range: f64,
+    pub(super) start_radius: f64,
+    pub(super) speed: (f64, f64),
+    pub(super) cv_duration: (f64, f64),
+    pub(super) turn_duration: (f64, f64),
+    pub(super) turn_rate: (f64, f64),
+    pub(super) sigma_r: f64,
+    pub(super) sigma_az: f64,
+    pub(super) clutter: f64,
+    pub(super) radar: SensorSpec,
+    pub(super) truth_seed: u64,
+    pub(super) warmup: f64,
+    pub(super) ospa: Ospa,
+    pub(super) gospa: Gospa,
+    pub(super) trackers: Vec<TrackerConfig>,
+}
+
+/// One scan's scores for one configuration (counts as `f64` for the averages).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize, Default)]
+pub(crate) struct ScanScore {
+    /// OSPA distance (m).
+    pub(super) ospa: f64,
+    /// GOSPA distance (m).
+    pub(super) gospa: f64,
+    /// GOSPA localisation cost `Σ d^p` over assigned pairs (m^p).
+    pub(super) loc: f64,
+    /// Assigned pairs.
+    pub(super) assigned: usize,
+    /// Missed truths.
+    pub(super) missed: usize,
+    /// False confirmed tracks (GOSPA).
+    pub(super) false_tracks: usize,
+    /// Confirmed tracks.
+    pub(super) confirmed: usize,
+    /// Track breaks at this scan (a truth tracked at the previous scan, untracked now).
+    pub(super) breaks: usize,
+}
+
+/// Reads one number from a scan's scores.
+pub(super) type ScoreOf<'a> = dyn Fn(&ScanScore) -> f64 + 'a;
+
+/// One configuration's results in one run.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub(crate) struct ConfigRun {
+    pub(super) scans: Vec<ScanScore>,
+    pub(super) breaks: usize,
+    pub(super) id_swaps: usize,
+    /// Per target: time to confirm (s), `None` if never tracked.
+    pub(super) time_to_confirm: Vec<Option<f64>>,
+    pub(super) false_tracks_per_scan: f64,
+    pub(super) false_track_ids: usize,
+    pub(super) tracks_seen: usize,
+}
+
+/// One run: one entry per [`CONFIGS`] item.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub(crate) struct SurvRun {
+    pub(super) configs: Vec<ConfigRun>,
+}
+
+fn unit(rng: &mut ChaCha8Rng) -> f64 {
+    StandardUniform.sample(rng)
+}
+
+fn between(rng: &mut ChaCha8Rng, (lo, hi): (f64, f64)) -> f64 {
+    lo + (hi - lo) * unit(rng)
+}
+
+impl Setup {
+    pub(super) fn new(p: &Params) -> Result<Self, ScenarioError> {
+        let pair = |lo: &str, hi: &str| -> Result<(f64, f64), ScenarioError> {
+            let (a, b) = (p.get(lo)?, p.get(hi)?);
+            if a > b {
+                let reason = format!("exceeds {hi}={b}: the range is empty");
+                let problem = ParamProblem::Conflict { value: a, reason };
+                return Err(ScenarioError::param(lo, problem));
+            }
+            Ok((a, b))
+        };
+        let duration = p.get("duration")?;
+        let period = p.get("period")?;
+        let range = p.get("range")?;
+        let start_radius = p.get("start_radius")?;
+        if start_radius > range {
+            let problem = ParamProblem::Conflict {
+                value: start_radius,
+                reason: format!("exceeds range={range}"),
+            };
+            return Err(ScenarioError::param("start_radius", problem));
+        }
+        let speed = pair("speed_min", "speed_max")?;
+        let p_d = p.get("p_d")?;
+        let sigma_r = p.get("sigma_r")?;
+        let sigma_az = p.get("sigma_az_deg")?.to_radians();
+        let clutter = p.get("clutter")?;
+        let radar = SensorSpec::new(
+            SensorId(RADAR),
+            Vector::<3>::zeros(),
+            SensorKind::Polar {
+                sigma_range: sigma_r,
+                sigma_azimuth: sigma_az,
+            },
+            Schedule::Periodic {
+                period,
+                offset: 0.0,
+            },
+        )?
+        .with_detection(Detection::Probability(p_d))?;
+        let cutoff = p.get("cutoff")?;
+        let order = p.get("order")?;
+        let area = PI * range * range;
+        let mut base = TrackerConfig::new(vec![argus_tracker::SensorId(RADAR)]);
+        base.sigma_a = p.get("kf_sigma_a")?;
+        // The tracker's defaults assume ≤ 350 m/s and 5 s scans: widen them with the
+        // scenario (fastest aircraft + 20 %, unused plots kept for 2.4 scans).
+        base.max_speed = base.max_speed.max(1.2 * speed.1);
+        base.max_initiation_interval = 2.4 * period;
+        let imm = EstimatorConfig::ImmCv2 {
+            sigma_a_low: p.get("imm_sigma_low")?,
+            sigma_a_high: p.get("imm_sigma_high")?,
+            p_stay: p.get("imm_p_stay")?,
+        };
+        let jpda = AssociationConfig::Jpda {
+            p_detection: p_d,
+            clutter_density: clutter.max(MIN_CLUTTER_PER_SCAN) / area,
+            max_exact_events: p.get("jpda_max_events")? as usize,
+        };
+        let trackers = vec![
+            base.clone(),
+            TrackerConfig {
+                estimator: imm,
+                ..base.clone()
+            },
+            TrackerConfig {
+                association: jpda,
+                ..base.clone()
+            },
+            TrackerConfig {
+                association: jpda,
+                estimator: imm,
+                ..base
+            },
+        ];
+        for c in &trackers {
+            c.validate()?;
+        }
+        let seed = p.get("truth_seed")?;
+        Ok(Self {
+            targets: p.get("targets")? as usize,
+            duration,
+            period,
+            // Scans at k·period, k = 0 ..= ⌊duration/period⌋ (1e-9 guards a ratio that
+            // is whole but rounds just below).
+            scans: (duration / period + 1e-9).floor() as usize + 1,
+            range,
+            start_radius,
+            speed,
+            cv_duration: pair("cv_min", "cv_max")?,
+            turn_duration: pair("turn_min", "turn_max")?,
+            turn_rate: pair("turn_rate_min", "turn_rate_max")?,
+            sigma_r,
+            sigma_az,
+            clutter,
+            radar,
+            truth_seed: seed as u64,
+            warmup: p.get("warmup")?,
+            ospa: Ospa::new(cutoff, order)?,
+            gospa: Gospa::new(cutoff, order)?,
+            trackers,
+        })
+    }
+
+    /// The traffic of run `run`: `targets` aircraft present from 0 to beyond the last
+    /// scan (the last segment runs half a period past `duration`, so the last scan is
+    /// inside every trajectory).
+    pub(super) fn truth(&self, run: u64) -> Result<Truth, ScenarioError> {
+        let rng = &mut run_rng(self.truth_seed, run);
+        let end = self.duration + 0.5 * self.period;
+        let mut truth = Truth::new();
+        for _ in 0..self.targets {
+            let r = self.start_radius * unit(rng).sqrt();
+            let phi = TAU * unit(rng);
+            let speed = between(rng, self.speed);
+            let heading = TAU * unit(rng);
+            let mut segments = Vec::new();
+            let mut t = 0.0;
+            let mut turn = false;
+            while t < end {
+                let seg = if turn {
+                    let d = between(rng, self.turn_duration).min(end - t);
+                    let rate = between(rng, self.turn_rate).to_radians();
+                    let sense = if unit(rng) < 0.5 { -1.0 } else { 1.0 };
+                    Segment::Turn {
+                        duration: d,
+                        rate: sense * rate,
+                    }
+                } else {
+                    Segment::ConstantVelocity {
+                        duration: between(rng, self.cv_duration).min(end - t),
+                    }
+                };
+                // A zero-length draw (min = max = 0) would never advance: stop there.
+                if seg.duration() <= 0.0 {
+                    segments.push(Segment::ConstantVelocity { duration: end - t });
+                    break;
+                }
+                t += seg.duration();
+                segments.push(seg);
+                turn = !turn;
+            }
+            let start = KinematicState::planar(
+                r * phi.cos(),
+                r * phi.sin(),
+                speed * heading.cos(),
+                speed * heading.sin(),
+            );
+            truth.add(Trajectory::new(0.0, start, segments)?);
+        }
+        Ok(truth)
+    }
+
+    /// The tracker's plots of every scan: the converted target plots, then the clutter.
+    pub(super) fn plots(
+        &self,
+        truth: &Truth,
+        rng: &mut ChaCha8Rng,
+    ) -> Result<Vec<Vec<Plot>>, ScenarioError> {
+        let raw = generate_plots(truth, std::slice::from_ref(&self.radar), rng)?;
+        let mut scans: Vec<Vec<Plot>> = vec![Vec::new(); self.scans];
+        for p in &raw {
+            let k = (p.time / self.period).round();
+            let Measurement::Polar { range, azimuth } = p.measurement else {
+                continue;
+            };
+            // A noisy range at or below zero (a target over the radar) is no plot.
+            if k < 0.0 || range <= 0.0 {
+                continue;
+            }
+            if let Some(scan) = scans.get_mut(k as usize) {
+                scan.push(self.convert(k as usize, range, azimuth)?);
+            }
+        }
+        let count = if self.clutter > 0.0 {
+            Some(Poisson::new(self.clutter).map_err(|e| {
+                let reason = e.to_string();
+                ScenarioError::param("clutter", ParamProblem::Rejected { reason })
+            })?)
+        } else {
+            None
+        };
+        for (k, scan) in scans.iter_mut().enumerate() {
+            let n: f64 = count.map_or(0.0, |c| c.sample(rng));
+            for _ in 0..n as u64 {
+                // Uniform per m² over the disc: r = R √u (u in (0, 1], so r > 0).
+                let u: f64 = OpenClosed01.sample(rng);
+                let azimuth = TAU * unit(rng) - PI;
+                scan.push(self.convert(k, self.range * u.sqrt(), azimuth)?);
+            }
+        }
+        Ok(scans)
+    }
+
+    pub(super) fn convert(
+        &self,
+        k: usize,
+        range: f64,
+        azimuth: f64,
+    ) -> Result<Plot, ScenarioError> {
+        let c = convert_polar(
+            range,
+            azimuth,
+            self.sigma_r,
+            self.sigma_az,
+            ConversionMethod::Unbiased,
+        )?;
+        Ok(Plot::cartesian(
+            self.time(k),
+            argus_tracker::SensorId(RADAR),
+            c.position,
+            c.covariance,
+        ))
+    }
+
+    pub(super) fn time(&self, k: usize) -> f64 {
+        k as f64 * self.period
+    }
+
+    /// Runs one tracker configuration over the scans and scores it.
+    pub(super) fn track(
+        &self,
+        config: &TrackerConfig,
+        scans: &[Vec<Plot>],
+        truth: &[Vec<(TargetId, Vector<2>)>],
+    ) -> Result<ConfigRun, ScenarioError> {
+        let mut tracker = Tracker::new(config.clone())?;
+        let mut scores = Vec::with_capacity(scans.len());
+        let mut track_scans = Vec::with_capacity(scans.len());
+        let mut tracked = vec![false; self.targets];
+        let mut now = vec![false; self.targets];
+        let mut confirmed: Vec<(u64, Vector<2>)> = Vec::new();
+        let mut estimates: Vec<Vector<2>> = Vec::new();
+        for (k, (plots, truths)) in scans.iter().zip(truth).enumerate() {
+            let t = self.time(k);
+            tracker.process_scan(t, argus_tracker::SensorId(RADAR), plots)?;
+            // Deleted tracks are not scored: drop them so memory stays flat.
+            drop(tracker.take_deleted());
+            confirmed.clear();
+            confirmed.extend(
+                tracker
+                    .tracks()
+                    .iter()
+                    .filter(|tr| tr.status() == TrackStatus::Confirmed)
+                    .map(|tr| {
+                        let m = tr.estimate().mean();
+                        (tr.id().0, Vector::<2>::new(m[0], m[2]))
+                    }),
+            );
+            estimates.clear();
+            estimates.extend(confirmed.iter().map(|c| c.1));
+            let truth_xy: Vec<Vector<2>> = truths.iter().map(|g| g.1).collect();
+            let g = self.gospa.distance(&truth_xy, &estimates)?;
+            let o = self.ospa.distance(&truth_xy, &estimates)?;
+            let scan = TrackScan::assign(t, truths, &confirmed, self.ospa.cutoff())?;
+            now.iter_mut().for_each(|x| *x = false);
+            for &(_, g) in scan.pairs() {
+                if let Some(x) = now.get_mut(g.0 as usize) {
+                    *x = true;
+                }
+            }
+            let breaks = tracked.iter().zip(&now).filter(|&(&a, &b)| a && !b).count();
+            std::mem::swap(&mut tracked, &mut now);
+            track_scans.push(scan);
+            scores.push(ScanScore {
+                ospa: o.distance,
+                gospa: g.distance,
+                loc: g.localisation,
+                assigned: g.assigned,
+                missed: g.missed_count,
+                false_tracks: g.false_count,
+                confirmed: confirmed.len(),
+                breaks,
+            });
+        }
+        let stats = TrackStatistics::from_scans(&track_scans)?;
+        Ok(ConfigRun {
+            scans: scores,
+            breaks: stats.breaks,
+            id_swaps: stats.id_swaps,
+            time_to_confirm: stats.time_to_confirm.iter().map(|x| x.1).collect(),
+            false_tracks_per_scan: stats.false_tracks_per_scan,
+            false_track_ids: stats.false_track_ids,
+            tracks_seen: stats.tracks_seen,
+        })
+    }
+}
