@@ -2,10 +2,15 @@
 //! digits (mpmath 1.4.1, `mp.dps = 40`: the root of g(φ) of the module docs of
 //! `inverse.rs` by `findroot`, then h = R cos φ + Z sin φ − a √(1 − e² sin²φ)), for
 //! ECEF inputs that are exact doubles. This isolates the inverse from the forward
-//! map's rounding. Tolerances: 1e-9 m in height (or one ulp of h where that is larger) and 1e-12 rad in angle (the
-//! accuracy goal); the measured errors are in docs/geography.md.
+//! map's rounding. Tolerances: 1e-9 m in height (or one ulp of h where that is
+//! larger) and 1e-12 rad in angle (the accuracy goal); the measured errors are in docs/geography.md.
 
-#![allow(clippy::unwrap_used, clippy::expect_used, clippy::excessive_precision, missing_docs)]
+#![allow(
+    clippy::unwrap_used,
+    clippy::expect_used,
+    clippy::excessive_precision,
+    missing_docs
+)]
 
 use argus_geo::{Ecef, Ellipsoid};
 
