@@ -34,6 +34,7 @@
 //! # Ok::<(), argus_imm::ImmError>(())
 //! ```
 
+mod aircraft;
 mod difference;
 mod embed;
 mod error;
@@ -49,6 +50,10 @@ mod test_support;
 #[cfg(test)]
 mod tests;
 
+pub use aircraft::{
+    AircraftEkf, AircraftEstimate, AircraftImm, AircraftPrediction, AircraftRadar, AircraftTuning,
+    AircraftUpdate, Augmentation, two_point_start,
+};
 pub use difference::{DifferenceEstimate, DifferenceNoiseImm};
 pub use embed::Embedded;
 pub use error::ImmError;
