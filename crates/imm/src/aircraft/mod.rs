@@ -11,6 +11,9 @@ mod radar;
 mod start;
 mod tuning;
 
+#[cfg(test)]
+mod tests;
+
 pub use estimate::AircraftEstimate;
 pub use estimator::{AircraftImm, AircraftPrediction, AircraftUpdate};
 pub use mixing::Augmentation;
