@@ -14,6 +14,8 @@
 //! - [`DifferenceNoiseImm`]: beyond the paper, one IMM whose range and azimuth variances
 //!   come from third differences of the raw plots (their expectation is the truth whatever
 //!   the IMM's motion models); [`EvidenceNoiseImm`]: five IMMs and a fitted likelihood curve.
+//! - [`ImmTrack`], [`imm_smooth`]: fixed-interval IMM smoothing (forward–backward, after
+//!   Nadarajah et al. 2012) with smoothed mode probabilities.
 //! - Polar plots are converted with the unbiased conversion ([`unbiased_conversion`],
 //!   [`UnbiasedConversion`]) using each hypothesis' own variances.
 //!
@@ -42,6 +44,7 @@ mod imm;
 mod markov;
 mod multi;
 mod polar;
+mod smooth;
 mod variational;
 
 #[cfg(test)]
@@ -59,5 +62,8 @@ pub use multi::{MultiImm, MultiImmEstimate, MultiImmUpdate, NoiseGrid};
 pub use polar::{
     NoiseVariances, PlotConversion, PolarPlot, PositionMeasurement, UnbiasedConversion,
     unbiased_conversion,
+};
+pub use smooth::{
+    ImmSmoothError, ImmSmoothed, ImmStep, ImmTrack, ImmTransition, PairWeights, imm_smooth,
 };
 pub use variational::{VariationalEstimate, VariationalNoiseImm};
