@@ -18,7 +18,8 @@
 //! - [`nees`], [`ChiSquareAverage`]: NEES/NIS consistency with chi-square bounds.
 //! - [`RtsTrack`], [`rts_smooth`]: fixed-interval RTS smoothing (KF, EKF) and the unscented
 //!   RTS smoother (UKF) from a recorded forward pass ([`SmoothingFilter`]);
-//!   [`FixedLagSmoother`]: fixed-lag smoothing ([`Lag`] in steps or seconds).
+//!   [`FixedLagSmoother`]: fixed-lag smoothing ([`Lag`] in steps or seconds); the
+//!   equations and references are in [`smooth`].
 
 mod cd_ekf;
 mod consistency;
@@ -29,7 +30,7 @@ mod kf;
 mod linearized;
 mod prediction;
 mod second_order;
-mod smooth;
+pub mod smooth;
 mod ukf;
 
 #[cfg(test)]

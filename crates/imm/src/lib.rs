@@ -15,7 +15,8 @@
 //!   come from third differences of the raw plots (their expectation is the truth whatever
 //!   the IMM's motion models); [`EvidenceNoiseImm`]: five IMMs and a fitted likelihood curve.
 //! - [`ImmTrack`], [`imm_smooth`]: fixed-interval IMM smoothing (forward–backward, after
-//!   Nadarajah et al. 2012) with smoothed mode probabilities.
+//!   Kim 1994, expectation-correction weights of Barber 2006) with smoothed mode
+//!   probabilities; the equations and references are in [`smooth`].
 //! - Polar plots are converted with the unbiased conversion ([`unbiased_conversion`],
 //!   [`UnbiasedConversion`]) using each hypothesis' own variances.
 //!
@@ -44,7 +45,7 @@ mod imm;
 mod markov;
 mod multi;
 mod polar;
-mod smooth;
+pub mod smooth;
 mod variational;
 
 #[cfg(test)]

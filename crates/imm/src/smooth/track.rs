@@ -62,7 +62,7 @@ impl<const N: usize, const R: usize> ImmStep<N, R> {
     }
 }
 
-/// An IMM forward pass recorded for smoothing ([`super`] for the equations).
+/// An IMM forward pass recorded for smoothing ([`crate::smooth`] for the equations).
 ///
 /// [`ImmTrack::step`] runs one IMM cycle and records it; [`ImmTrack::push`] records a
 /// posterior the caller computed with the same IMM (several plots of one scan, coasting
