@@ -9,6 +9,7 @@ use argus_motion_models::Cv2D;
 use argus_sensors::Polar2D;
 
 use crate::config::MULTI_IMM_HYPOTHESES;
+use crate::field::{ConfigField, EstimatorField};
 use crate::plot::{PolarModel, ScanPoint};
 use crate::track::MultiState;
 use crate::{EstimatorConfig, TrackerConfig, TrackerError};
@@ -30,7 +31,7 @@ impl Estimators {
         let imm2 = |sigma_a_low, sigma_a_high, p_stay: f64| {
             let markov = MarkovMatrix::new([[p_stay, 1.0 - p_stay], [1.0 - p_stay, p_stay]])
                 .map_err(|_| TrackerError::InvalidConfig {
-                    field: "estimator.p_stay",
+                    field: ConfigField::Estimator(EstimatorField::PStay),
                     value: p_stay,
                     reason: "does not make a Markov matrix",
                 })?;
@@ -39,7 +40,7 @@ impl Estimators {
                 Kf::new(Cv2D::discrete(sigma_a_high)?),
             ];
             Imm::new(filters, markov).map_err(|_| TrackerError::InvalidConfig {
-                field: "estimator",
+                field: ConfigField::Estimator(EstimatorField::Kind),
                 value: p_stay,
                 reason: "the IMM rejected it",
             })
@@ -70,13 +71,19 @@ impl Estimators {
                     value,
                     reason: "the multi-IMM rejected it",
                 };
-                let grid = NoiseGrid::common(grid_spacing)
-                    .map_err(|_| bad("estimator.grid_spacing", grid_spacing))?;
+                let grid = NoiseGrid::common(grid_spacing).map_err(|_| {
+                    bad(
+                        ConfigField::Estimator(EstimatorField::GridSpacing),
+                        grid_spacing,
+                    )
+                })?;
                 let imm = imm2(sigma_a_low, sigma_a_high, p_stay)?;
-                out.multi = Some(
-                    MultiImm::new(imm, grid, clip)
-                        .map_err(|_| bad("estimator.clip", clip.unwrap_or(f64::NAN)))?,
-                );
+                out.multi = Some(MultiImm::new(imm, grid, clip).map_err(|_| {
+                    bad(
+                        ConfigField::Estimator(EstimatorField::Clip),
+                        clip.unwrap_or(f64::NAN),
+                    )
+                })?);
             }
         }
         Ok(out)

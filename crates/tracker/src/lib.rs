@@ -120,6 +120,7 @@ mod assign;
 mod config;
 mod error;
 mod estimator;
+mod field;
 mod grid;
 mod jpda;
 mod plot;
@@ -131,6 +132,7 @@ pub use config::{
     SensorConfig, TrackerConfig,
 };
 pub use error::TrackerError;
+pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
 pub use plot::{Plot, PlotMeasurement};
 pub use track::{DeletionReason, SensorId, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};

@@ -6,6 +6,7 @@ use argus_sensors::{
     CartesianPosition, ConversionMethod, Polar2D, RadarNoise, Sigmas, convert_polar,
 };
 
+use crate::field::{ConfigField, SensorField};
 use crate::{SensorConfig, SensorId, TrackerError};
 
 /// What a plot measured.
@@ -113,7 +114,7 @@ impl SensorModel {
             None => None,
             Some(n) => {
                 let bad = |reason| TrackerError::InvalidConfig {
-                    field: "sensors.polar_noise",
+                    field: ConfigField::Sensor(SensorField::PolarNoise),
                     value: n.sigma_azimuth,
                     reason,
                 };
