@@ -184,7 +184,7 @@ pub enum EstimatorConfig {
         p_stay: f64,
     },
     /// Seed 000's multi-IMM measurement-noise estimator ([`argus_imm::MultiImm`]) per
-    /// track: [`MULTI_IMM_HYPOTHESES`] IMMs (each the two-mode CV IMM of
+    /// track: [`crate::MULTI_IMM_HYPOTHESES`] IMMs (each the two-mode CV IMM of
     /// [`EstimatorConfig::ImmCv2`]) assume the variances `(1 + (m − 2) p) σ²_ref`
     /// (eq 14, [`argus_imm::NoiseGrid::common`]); each polar plot updates all of them
     /// and moves the track's reference `σ²_ref` (eq 13), which starts at the configured
@@ -206,9 +206,6 @@ pub enum EstimatorConfig {
         clip: Option<f64>,
     },
 }
-
-/// Number of noise hypotheses `K` of [`EstimatorConfig::MultiImm`] (seed 000: 5).
-pub const MULTI_IMM_HYPOTHESES: usize = 5;
 
 /// Track-score management: each track carries the log-likelihood ratio `L` of "target"
 /// against "false track", tested sequentially (Wald's SPRT).

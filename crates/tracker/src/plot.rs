@@ -238,7 +238,7 @@ impl SensorModel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::estimator::polar_half;
+    use crate::innovation::polar_half;
     use argus_core_math::Gaussian;
     use argus_filters::{Ekf, GaussianFilter};
     use argus_motion_models::Cv2D;
