@@ -15,8 +15,9 @@ use std::path::{Path, PathBuf};
 
 use argus_core_math::{Matrix, Vector};
 use argus_tracker::{
-    AssociationConfig, DeletionReason, EstimatorConfig, MULTI_IMM_HYPOTHESES, Plot, PolarNoise,
-    ScoreConfig, SensorConfig, SensorId, Track, TrackStatus, Tracker, TrackerConfig, TrackerError,
+    AssociationConfig, AssociationField, DeletionReason, EstimatorConfig, EstimatorField,
+    MULTI_IMM_HYPOTHESES, Plot, PolarNoise, ScoreConfig, ScoreField, SensorConfig, SensorField,
+    SensorId, Track, TrackStatus, Tracker, TrackerConfig, TrackerError,
 };
 use serde::Deserialize;
 use toml::Spanned;
@@ -451,23 +452,23 @@ impl Cx<'_> {
     /// A sensor value the tracker refuses: the `[[sensor]]` that holds it (the value
     /// reported is the sensor's id for a missing polar noise or a repeated id, else the
     /// bad number).
-    fn sensor_error(&self, field: &str, value: f64, reason: &str) -> CliError {
+    fn sensor_error(&self, field: SensorField, value: f64, reason: &str) -> CliError {
         let same = |v: f64| v.to_bits() == value.to_bits();
         let found = self.sensors.iter().find_map(|s| {
             let id = *s.id.get_ref();
             let hit = match field {
-                "sensors.position" => s
+                SensorField::Position => s
                     .position
                     .get_ref()
                     .iter()
                     .any(|v| same(*v))
                     .then(|| s.position.span()),
-                "sensors.polar_noise.sigma_range" => s
+                SensorField::SigmaRange => s
                     .sigma_range
                     .as_ref()
                     .filter(|v| same(*v.get_ref()))
                     .map(Spanned::span),
-                "sensors.polar_noise.sigma_azimuth" => s
+                SensorField::SigmaAzimuth => s
                     .sigma_azimuth_deg
                     .as_ref()
                     .filter(|v| same(v.get_ref().to_radians()))
@@ -477,10 +478,10 @@ impl Cx<'_> {
             hit.map(|span| (id, span))
         });
         let key = match field {
-            "sensors.position" => "position",
-            "sensors.polar_noise.sigma_range" => "sigma_range",
-            "sensors.polar_noise.sigma_azimuth" => "sigma_azimuth_deg",
-            "sensors.polar_noise" => "sigma_range",
+            SensorField::Position => "position",
+            SensorField::SigmaRange => "sigma_range",
+            SensorField::SigmaAzimuth => "sigma_azimuth_deg",
+            SensorField::PolarNoise => "sigma_range",
             _ => "id",
         };
         match found {
@@ -511,60 +512,73 @@ impl Cx<'_> {
             t.score.as_ref().map(|s| f(s.get_ref()).span())
         };
         let est = self.estimator;
+        use argus_tracker::ConfigField as F;
         let (name, at): (String, Option<Range<usize>>) = match *field {
-            "gate_probability" => (format!("tracker.{field}"), span(&t.gate_probability)),
-            "max_speed" => (format!("tracker.{field}"), span(&t.max_speed)),
-            "velocity_gate_sigmas" => (format!("tracker.{field}"), span(&t.velocity_gate_sigmas)),
-            "max_initiation_interval" => {
+            F::GateProbability => (format!("tracker.{field}"), span(&t.gate_probability)),
+            F::MaxSpeed => (format!("tracker.{field}"), span(&t.max_speed)),
+            F::VelocityGateSigmas => (format!("tracker.{field}"), span(&t.velocity_gate_sigmas)),
+            F::MaxInitiationInterval => {
                 (format!("tracker.{field}"), span(&t.max_initiation_interval))
             }
-            "confirm_m" => (format!("tracker.{field}"), span(&t.confirm_m)),
-            "confirm_n" => (format!("tracker.{field}"), span(&t.confirm_n)),
-            "max_misses" => (format!("tracker.{field}"), span(&t.max_misses)),
-            "max_position_sigma" => (format!("tracker.{field}"), span(&t.max_position_sigma)),
-            "grid_cell" => (format!("tracker.{field}"), span(&t.grid_cell)),
-            "association" => ("tracker.association".into(), span(&t.association)),
-            "association.p_detection" => ("tracker.p_detection".into(), span(&t.p_detection)),
-            "association.clutter_density" => {
+            F::ConfirmM => (format!("tracker.{field}"), span(&t.confirm_m)),
+            F::ConfirmN => (format!("tracker.{field}"), span(&t.confirm_n)),
+            F::MaxMisses => (format!("tracker.{field}"), span(&t.max_misses)),
+            F::MaxPositionSigma => (format!("tracker.{field}"), span(&t.max_position_sigma)),
+            F::GridCell => (format!("tracker.{field}"), span(&t.grid_cell)),
+            F::Association(AssociationField::Kind) => {
+                ("tracker.association".into(), span(&t.association))
+            }
+            F::Association(AssociationField::PDetection) => {
+                ("tracker.p_detection".into(), span(&t.p_detection))
+            }
+            F::Association(AssociationField::ClutterDensity) => {
                 ("tracker.clutter_density".into(), span(&t.clutter_density))
             }
-            "association.max_exact_events" => {
+            F::Association(AssociationField::MaxExactEvents) => {
                 ("tracker.max_exact_events".into(), span(&t.max_exact_events))
             }
-            "score.p_detection" => (format!("tracker.{field}"), score(|s| &s.p_detection)),
-            "score.clutter_density" => (format!("tracker.{field}"), score(|s| &s.clutter_density)),
-            "score.new_target_density" => {
+            F::Score(ScoreField::PDetection) => {
+                (format!("tracker.{field}"), score(|s| &s.p_detection))
+            }
+            F::Score(ScoreField::ClutterDensity) => {
+                (format!("tracker.{field}"), score(|s| &s.clutter_density))
+            }
+            F::Score(ScoreField::NewTargetDensity) => {
                 (format!("tracker.{field}"), score(|s| &s.new_target_density))
             }
-            "score.false_confirm" => (format!("tracker.{field}"), score(|s| &s.false_confirm)),
-            "score.missed_confirm" => (format!("tracker.{field}"), score(|s| &s.missed_confirm)),
-            "score.delete_drop" => (format!("tracker.{field}"), score(|s| &s.delete_drop)),
-            "sigma_a" => (
+            F::Score(ScoreField::FalseConfirm) => {
+                (format!("tracker.{field}"), score(|s| &s.false_confirm))
+            }
+            F::Score(ScoreField::MissedConfirm) => {
+                (format!("tracker.{field}"), score(|s| &s.missed_confirm))
+            }
+            F::Score(ScoreField::DeleteDrop) => {
+                (format!("tracker.{field}"), score(|s| &s.delete_drop))
+            }
+            F::SigmaA => (
                 "estimator.sigma_a".into(),
                 est.sigma_a.as_ref().map(Spanned::span),
             ),
-            "estimator.sigma_a_low" | "estimator.sigma_a_high" => (
+            F::Estimator(EstimatorField::SigmaALow | EstimatorField::SigmaAHigh) => (
                 "estimator.models".into(),
                 est.models.as_ref().map(Spanned::span),
             ),
-            "estimator.p_stay" => (
+            F::Estimator(EstimatorField::PStay) => (
                 "estimator.markov".into(),
                 est.markov.as_ref().map(Spanned::span),
             ),
-            "estimator" => ("estimator.kind".into(), Some(est.kind.span())),
-            "estimator.grid_spacing" => ("estimator.p".into(), est.p.as_ref().map(Spanned::span)),
-            "estimator.clip" => (
+            F::Estimator(EstimatorField::Kind) => ("estimator.kind".into(), Some(est.kind.span())),
+            F::Estimator(EstimatorField::GridSpacing) => {
+                ("estimator.p".into(), est.p.as_ref().map(Spanned::span))
+            }
+            F::Estimator(EstimatorField::Clip) => (
                 "estimator.clip".into(),
                 est.clip.as_ref().map(Spanned::span),
             ),
-            "sensors.position"
-            | "sensors.polar_noise.sigma_range"
-            | "sensors.polar_noise.sigma_azimuth"
-            | "sensors.polar_noise"
-            | "sensors.id" => {
-                return self.sensor_error(field, *value, reason);
+            F::Sensor(f) => {
+                return self.sensor_error(f, *value, reason);
             }
-            "sensors" => {
+            F::Sensors => {
                 return CliError::input(
                     self.path,
                     None,
@@ -572,10 +586,10 @@ impl Cx<'_> {
                     "the tracker needs at least one [[sensor]]",
                 );
             }
-            other => (other.to_owned(), None),
+            other => (other.key().to_owned(), None),
         };
         // "association" carries no number of its own.
-        let msg = if *field == "association" {
+        let msg = if *field == F::Association(AssociationField::Kind) {
             (*reason).to_owned()
         } else {
             format!("{value}: {reason}")
