@@ -247,7 +247,11 @@ impl Plot {
         position: Vector<2>,
         covariance: Matrix<2, 2>,
     ) -> Result<Self, SensorError> {
-        Self::new(time, sensor, CartesianMeasurement::new(position, covariance)?)
+        Self::new(
+            time,
+            sensor,
+            CartesianMeasurement::new(position, covariance)?,
+        )
     }
 
     /// The same plot with an amplitude (or none).

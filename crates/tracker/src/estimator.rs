@@ -2,11 +2,10 @@
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{Ekf, GaussianFilter, Kf, MeasurementPrediction};
-use argus_imm::{
-    Imm, ImmEstimate, ImmPrediction, MarkovMatrix, MultiImm, NoiseGrid, PolarPlot, log_sum_exp,
-};
+use argus_imm::{Imm, ImmEstimate, ImmPrediction, MarkovMatrix, MultiImm, NoiseGrid, log_sum_exp};
 use argus_motion_models::Cv2D;
 use argus_sensors::Polar2D;
+use argus_sensors::PolarMeasurement;
 
 use crate::config::MULTI_IMM_HYPOTHESES;
 use crate::plot::{PolarModel, ScanPoint};
@@ -320,7 +319,7 @@ pub(crate) fn multi_update(
     pm: &PolarModel,
     z: &Vector<2>,
 ) -> Option<(MultiState, Gaussian<4>, f64)> {
-    let plot = PolarPlot::new(z[0], z[1]).ok()?;
+    let plot = PolarMeasurement::new(z[0], z[1]).ok()?;
     let u = multi.update(predicted, &plot, &pm.conversion).ok()?;
     let ll = log_sum_exp(&u.log_likelihoods) - (MULTI_IMM_HYPOTHESES as f64).ln();
     let combined = u.estimate.combined().ok()?;
