@@ -442,7 +442,12 @@ mod tests {
             panic!("not 3-D Cartesian");
         };
         assert_eq!(*c.position(), Vector::<3>::new(1.0, 2.0, 3.0));
-        assert_eq!(upper_3(c.covariance()), [1.0, 0.2, 0.3, 4.0, 1.0, 6.0]);
+        // Read exactly (the same decimal strings parse to the same f64).
+        let bits = |v: [f64; 6]| v.map(f64::to_bits);
+        assert_eq!(
+            bits(upper_3(c.covariance())),
+            bits([1.0, 0.2, 0.3, 4.0, 1.0, 6.0])
+        );
         // cov [[1, .2, .3], [.2, 4, 5], [.3, 5, 6]] has det < 0: rejected on line 2.
         let e = parse("t,sensor,x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz\n0,1,1,2,3,1,0.2,0.3,4,5,6\n")
             .unwrap_err();
