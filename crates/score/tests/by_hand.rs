@@ -1,6 +1,8 @@
 //! Every metric on small constructed cases, against values worked out by hand in the
 //! comments. Tolerances are round-off (1e-9 on numbers of order 1–100).
 
+#![allow(clippy::unwrap_used, missing_docs)]
+
 use argus_score::{ScoreConfig, Scorer, read_tracks_from, read_truth_from};
 
 const TOL: f64 = 1e-9;

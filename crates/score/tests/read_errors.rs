@@ -1,5 +1,7 @@
 //! The readers: accepted layouts, and typed errors naming file, line and field.
 
+#![allow(clippy::unwrap_used, missing_docs)]
+
 use argus_score::{ScoreError, read_tracks, read_tracks_from, read_truth_from};
 
 fn truth_err(text: &str) -> String {
