@@ -76,46 +76,62 @@ impl<'a> TruthCursor<'a> {
     }
 }
 
-/// Sweeps tracks forward in time.
+/// Sweeps tracks forward in time, visiting only the tracks that have started and can
+/// still be present (so thousands of short false tracks cost little per grid time).
 pub(crate) struct TrackCursor<'a> {
     tracks: &'a [TrackHistory],
-    next: Vec<usize>,
+    /// Track indices by first row time.
+    order: Vec<usize>,
+    /// Next position in `order` to activate.
+    pending: usize,
+    /// Active tracks: (index, next row).
+    active: Vec<(usize, usize)>,
     max_age: f64,
 }
 
 impl<'a> TrackCursor<'a> {
     pub(crate) fn new(tracks: &'a [TrackHistory], max_age: f64) -> Self {
+        let mut order: Vec<usize> = (0..tracks.len()).collect();
+        order.sort_by(|&a, &b| tracks[a].rows()[0].t.total_cmp(&tracks[b].rows()[0].t));
         Self {
             tracks,
-            next: vec![0; tracks.len()],
+            order,
+            pending: 0,
+            active: Vec::new(),
             max_age,
         }
     }
 
-    /// The confirmed tracks present at `t` (index, state predicted to `t`). Times must not
-    /// decrease between calls.
+    /// The confirmed tracks present at `t` (index, state predicted to `t`), in index order.
+    /// Times must not decrease between calls.
     pub(crate) fn at(&mut self, t: f64, out: &mut Vec<(usize, Kinematic)>) {
         out.clear();
-        for (i, track) in self.tracks.iter().enumerate() {
-            let r = track.rows();
-            let n = &mut self.next[i];
+        while self.pending < self.order.len()
+            && self.tracks[self.order[self.pending]].rows()[0].t <= t
+        {
+            self.active.push((self.order[self.pending], 0));
+            self.pending += 1;
+        }
+        let (tracks, max_age) = (self.tracks, self.max_age);
+        self.active.retain_mut(|(i, n)| {
+            let r = tracks[*i].rows();
             while *n < r.len() && r[*n].t <= t {
                 *n += 1;
             }
-            if *n == 0 {
-                continue;
-            }
             let row = r[*n - 1];
             let age = t - row.t;
-            if row.confirmed && age <= self.max_age {
+            if row.confirmed && age <= max_age {
                 out.push((
-                    i,
+                    *i,
                     Kinematic {
                         pos: Vector::<2>::new(row.x + row.vx * age, row.y + row.vy * age),
                         vel: Vector::<2>::new(row.vx, row.vy),
                     },
                 ));
             }
-        }
+            // Keep it while rows remain, or while its last row may still be in date.
+            *n < r.len() || (row.confirmed && age <= max_age)
+        });
+        out.sort_unstable_by_key(|p| p.0);
     }
 }

@@ -114,6 +114,7 @@ impl Scorer {
                 cfg.assign_cutoff,
                 &self.gospa,
                 cfg.gospa_cutoff,
+                cfg.gospa_order,
             )?;
 
             for a in assigned_to.iter_mut() {
