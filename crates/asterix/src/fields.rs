@@ -18,7 +18,8 @@ pub(crate) fn quantise(
     max: f64,
 ) -> Result<i64, EncodeError> {
     let q = (value / lsb).round();
-    if !q.is_finite() || q < min || q > max {
+    // A negative value for an unsigned field is an error even when it would round to 0.
+    if !q.is_finite() || q < min || q > max || (min >= 0.0 && value < 0.0) {
         return Err(EncodeError::OutOfRange { item, what, value });
     }
     // In range [min, max] ⊂ i64 by the check above.

@@ -1,6 +1,8 @@
 //! Hand-built byte vectors, their expected values computed from the items' LSBs
 //! (CAT048 ed. 1.31, CAT034 ed. 1.29).
 
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use argus_asterix::{
     Cat034, Cat048, DecodeError, MessageType, Record, TimeOfDay, decode, encode_block,
 };
