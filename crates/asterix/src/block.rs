@@ -3,6 +3,7 @@
 
 use crate::cat034::Cat034;
 use crate::cat048::Cat048;
+use crate::cat062::Cat062;
 use crate::error::{DecodeError, EncodeError};
 use crate::record::{Category, RecordWriter, decode_record};
 
@@ -14,6 +15,8 @@ pub enum Record {
     Cat048(Cat048),
     /// A CAT034 monoradar service message.
     Cat034(Cat034),
+    /// A CAT062 system track.
+    Cat062(Cat062),
 }
 
 /// A skipped block or record: the typed reason and how many bytes were lost.
@@ -87,6 +90,7 @@ pub fn decode(data: &[u8]) -> Decoded {
         match cat {
             48 => decode_records(data, pos + 3, end, &mut out, Record::Cat048),
             34 => decode_records(data, pos + 3, end, &mut out, Record::Cat034),
+            62 => decode_records(data, pos + 3, end, &mut out, Record::Cat062),
             _ => out.skipped.push(Skip {
                 error: DecodeError::UnknownCategory { offset: pos, cat },
                 dropped: end - pos,

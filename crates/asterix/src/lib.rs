@@ -10,6 +10,8 @@
 //! - CAT048: ASTERIX Part 4 Category 048, edition 1.31 (UAP FRN 1–28). The
 //!   items decoded have the same layout from edition 1.21 on.
 //! - CAT034: ASTERIX Part 2b Category 034, edition 1.29 (UAP FRN 1–14).
+//! - CAT062: ASTERIX Part 9 Category 062, edition 1.18 (UAP FRN 1–35):
+//!   I062/010, /040, /070, /100, /105, /185 decoded and encoded.
 //!
 //! # Why not an existing crate
 //! Surveyed December 2026:
@@ -57,6 +59,7 @@
 mod block;
 mod cat034;
 mod cat048;
+mod cat062;
 mod error;
 mod fields;
 mod record;
@@ -68,6 +71,7 @@ pub use cat048::{
     CartesianPosition, Cat048, FlightLevel, MeasuredPolar, Mode3A, PolarVelocity, ReportDescriptor,
     TrackStatus,
 };
+pub use cat062::{Cartesian062, Cat062, Velocity062, Wgs84Position};
 pub use error::{DecodeError, EncodeError, ItemId};
 pub use fields::{Azimuth16, DataSource, NM, TimeOfDay};
 pub use record::{Category, RecordWriter};

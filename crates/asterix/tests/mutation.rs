@@ -1,5 +1,5 @@
 //! Seeded mutation test: random byte flips, truncations and length lies over
-//! encoded CAT048 / CAT034 samples never panic, always terminate, and every
+//! encoded CAT048 / CAT034 / CAT062 samples never panic, always terminate, and every
 //! skip is typed with an offset inside the input. Reduced count here (10⁴
 //! mutated inputs of ~20 records each); the full ≥ 10⁶-record run is the same
 //! loop with a larger count.
@@ -7,9 +7,10 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use argus_asterix::{
-    Azimuth16, CartesianPosition, Cat034, Cat048, DataSource, DecodeError, FlightLevel,
-    MeasuredPolar, MessageType, Mode3A, PolarVelocity, ReportDescriptor, RotationPeriod, Sector,
-    TimeOfDay, TrackStatus, decode, encode_block,
+    Azimuth16, Cartesian062, CartesianPosition, Cat034, Cat048, Cat062, DataSource, DecodeError,
+    FlightLevel, MeasuredPolar, MessageType, Mode3A, PolarVelocity, ReportDescriptor,
+    RotationPeriod, Sector, TimeOfDay, TrackStatus, Velocity062, Wgs84Position, decode,
+    encode_block,
 };
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -81,6 +82,20 @@ fn samples() -> Vec<u8> {
     encode_block(&service, &mut b).unwrap();
     b.extend_from_slice(&[99, 0, 6, 1, 2, 3]);
     encode_block(&sparse, &mut b).unwrap();
+    let tracks: Vec<Cat062> = (0..4)
+        .map(|i| Cat062 {
+            source: Some(DataSource { sac: 7, sic: 8 }),
+            time: Some(TimeOfDay(1000 + i)),
+            wgs84: Some(Wgs84Position {
+                lat: 8_388_608,
+                lon: -16_777_216,
+            }),
+            cartesian: Some(Cartesian062 { x: -2000, y: 1001 }),
+            velocity: Some(Velocity062 { vx: 400, vy: -200 }),
+            track_number: Some(u16::try_from(i).unwrap_or(0)),
+        })
+        .collect();
+    encode_block(&tracks, &mut b).unwrap();
     b
 }
 
@@ -88,7 +103,7 @@ fn samples() -> Vec<u8> {
 fn mutated_inputs_never_panic_and_every_skip_is_typed() {
     let base = samples();
     let clean = decode(&base);
-    assert_eq!(clean.records.len(), 20);
+    assert_eq!(clean.records.len(), 24);
     assert_eq!(clean.skipped.len(), 1, "only the unknown category");
 
     let mut rng = ChaCha8Rng::seed_from_u64(0x00a5_7e41);
@@ -135,7 +150,7 @@ fn mutated_inputs_never_panic_and_every_skip_is_typed() {
             if let DecodeError::ItemOverrun { item, .. } | DecodeError::InvalidItem { item, .. } =
                 s.error
             {
-                assert!(item.cat == 48 || item.cat == 34);
+                assert!(matches!(item.cat, 34 | 48 | 62));
             }
             assert!(!s.error.to_string().is_empty());
         }
