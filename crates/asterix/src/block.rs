@@ -1,6 +1,7 @@
 //! Data-block framing (CAT octet, 16-bit LEN, records) and the decode loop
 //! that keeps going after a bad record where the framing allows.
 
+use crate::cat021::Cat021;
 use crate::cat034::Cat034;
 use crate::cat048::Cat048;
 use crate::cat062::Cat062;
@@ -15,6 +16,8 @@ pub enum Record {
     Cat048(Cat048),
     /// A CAT034 monoradar service message.
     Cat034(Cat034),
+    /// A CAT021 ADS-B report (decode only).
+    Cat021(Cat021),
     /// A CAT062 system track.
     Cat062(Cat062),
 }
@@ -90,6 +93,7 @@ pub fn decode(data: &[u8]) -> Decoded {
         match cat {
             48 => decode_records(data, pos + 3, end, &mut out, Record::Cat048),
             34 => decode_records(data, pos + 3, end, &mut out, Record::Cat034),
+            21 => decode_records(data, pos + 3, end, &mut out, Record::Cat021),
             62 => decode_records(data, pos + 3, end, &mut out, Record::Cat062),
             _ => out.skipped.push(Skip {
                 error: DecodeError::UnknownCategory { offset: pos, cat },

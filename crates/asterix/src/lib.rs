@@ -10,6 +10,8 @@
 //! - CAT048: ASTERIX Part 4 Category 048, edition 1.31 (UAP FRN 1–28). The
 //!   items decoded have the same layout from edition 1.21 on.
 //! - CAT034: ASTERIX Part 2b Category 034, edition 1.29 (UAP FRN 1–14).
+//! - CAT021: ASTERIX Part 12 Category 021, edition 2.1 (UAP FRN 1–49),
+//!   decode only: I021/010, /071–/073, /075, /077, /080, /090, /130, /131.
 //! - CAT062: ASTERIX Part 9 Category 062, edition 1.18 (UAP FRN 1–35):
 //!   I062/010, /040, /070, /100, /105, /185 decoded and encoded.
 //!
@@ -57,6 +59,7 @@
 //! ```
 
 mod block;
+mod cat021;
 mod cat034;
 mod cat048;
 mod cat062;
@@ -66,6 +69,7 @@ mod record;
 mod uap;
 
 pub use block::{Decoded, Record, Skip, decode, encode_block};
+pub use cat021::{Cat021, LatLon, Quality, QualityExt};
 pub use cat034::{Cat034, MessageType, RotationPeriod, Sector};
 pub use cat048::{
     CartesianPosition, Cat048, FlightLevel, MeasuredPolar, Mode3A, PolarVelocity, ReportDescriptor,

@@ -146,11 +146,11 @@ fn mutated_inputs_never_panic_and_every_skip_is_typed() {
                 s.error,
                 m.len()
             );
-            // Item errors name an item of the block's category.
+            // Item errors name an item of a known category (a flipped CAT byte may land on 21).
             if let DecodeError::ItemOverrun { item, .. } | DecodeError::InvalidItem { item, .. } =
                 s.error
             {
-                assert!(matches!(item.cat, 34 | 48 | 62));
+                assert!(matches!(item.cat, 21 | 34 | 48 | 62));
             }
             assert!(!s.error.to_string().is_empty());
         }
