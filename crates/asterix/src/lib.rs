@@ -1,7 +1,8 @@
 //! ASTERIX (EUROCONTROL's All-purpose Structured Surveillance Information
-//! Exchange) codec for Argus: data-block and record framing, and the items of
-//! CAT048 (monoradar target reports) and CAT034 (north-marker and
-//! sector-crossing messages) a tracker needs, decoded and encoded.
+//! Exchange) codec for Argus: data-block and record framing, and the items a
+//! tracker needs of CAT048 (monoradar target reports), CAT034 (north-marker
+//! and sector-crossing messages) and CAT062 (system tracks), decoded and
+//! encoded, and of CAT021 (ADS-B reports), decoded.
 //!
 //! # Editions
 //! - Framing: EUROCONTROL ASTERIX Part 1 (data block: CAT, 16-bit LEN, records;
@@ -25,8 +26,9 @@
 //!   sector processing), `anyhow` errors (untyped), FSPEC chains cut at four
 //!   octets, a whole block rejected on the first bad record.
 //!
-//! Neither covers the needed categories with typed, offset-carrying errors, so
-//! the layouts are written here from the category specifications.
+//! Neither covers the needed categories (CAT021, CAT034, CAT048, CAT062) with
+//! typed, offset-carrying errors, so the layouts are written here from the
+//! category specifications.
 //!
 //! # Robustness
 //! [`decode`] never panics and always terminates; every skipped block or
