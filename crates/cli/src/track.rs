@@ -1,5 +1,6 @@
 //! `argus track`: a configured estimator over a user's plot file (see `docs/FORMATS.md`).
 
+use argus_sensors::Measurement;
 use std::path::Path;
 
 use argus_core_math::{Gaussian, Matrix, Vector};
@@ -14,10 +15,10 @@ use crate::estimator::{
     initial_probabilities, polar, position, position3, spherical, step, unbiased, unbiased3,
 };
 use crate::output::write_atomic;
-use crate::plotfile::{self, FilePlot, FileValue};
+use crate::plotfile::{self, FilePlot};
 use argus_imm::{
     ImmEstimate, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PROBABILITY_SUM_TOL,
-    PolarPlot, UnbiasedConversion,
+    UnbiasedConversion,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 
@@ -432,7 +433,7 @@ pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize,
         plots_path,
         sensors: &sensors,
     };
-    let (rows, n) = if plots.first().is_some_and(|p| p.value.dim() == 3) {
+    let (rows, n) = if plots.first().is_some_and(|p| p.measurement().dim() == 3) {
         track_3d(&ctx, &est, &plots)?
     } else {
         track_2d(&ctx, &est, &plots)?
@@ -452,7 +453,7 @@ impl Ctx<'_> {
     fn sensor(&self, p: &FilePlot) -> Result<&Sensor, CliError> {
         self.sensors
             .iter()
-            .find(|s| s.id == p.sensor)
+            .find(|s| s.id == p.sensor())
             .ok_or_else(|| {
                 CliError::input(
                     self.plots_path,
@@ -460,7 +461,7 @@ impl Ctx<'_> {
                     Some("sensor"),
                     format!(
                         "unknown sensor {} (not in {})",
-                        p.sensor,
+                        p.sensor(),
                         self.config.display()
                     ),
                 )
@@ -549,7 +550,7 @@ fn track_loop<const N: usize, const D: usize>(
     };
     let (z1, r1) = convert(p1)?;
     let (z2, r2) = convert(p2)?;
-    let mut x = init(&z1, &r1, &z2, &r2, p2.time - p1.time).map_err(|e| {
+    let mut x = init(&z1, &r1, &z2, &r2, p2.time() - p1.time()).map_err(|e| {
         CliError::input(
             ctx.plots_path,
             Some(p2.line),
@@ -557,7 +558,7 @@ fn track_loop<const N: usize, const D: usize>(
             format!("two-point initialisation: {e}"),
         )
     })?;
-    let mut t = p2.time;
+    let mut t = p2.time();
     let push = |rows: &mut String, t: f64, g: &Gaussian<N>| {
         let mut v = vec![format!("{t}"), "1".to_owned()];
         v.extend(g.mean().iter().map(|m| format!("{m}")));
@@ -568,8 +569,8 @@ fn track_loop<const N: usize, const D: usize>(
     push(&mut rows, t, &x);
     let mut n = 1;
     for p in iter {
-        x = update(&x, p.time - t, p)?;
-        t = p.time;
+        x = update(&x, p.time() - t, p)?;
+        t = p.time();
         push(&mut rows, t, &x);
         n += 1;
     }
@@ -650,7 +651,7 @@ fn imm_start<'p>(
     };
     let (z1, r1) = convert(p1)?;
     let (z2, r2) = convert(p2)?;
-    let g = two_point_cv2(&z1, &r1, &z2, &r2, p2.time - p1.time).map_err(|e| {
+    let g = two_point_cv2(&z1, &r1, &z2, &r2, p2.time() - p1.time()).map_err(|e| {
         CliError::input(
             ctx.plots_path,
             Some(p2.line),
@@ -679,20 +680,20 @@ fn track_imm<const R: usize>(
     let (g, p2, rest) = imm_start(ctx, plots, convert)?;
     let mut est = ImmEstimate::from_common(g, initial_probabilities::<R>(spec))?;
     let mut rows = imm_header(R, &[]);
-    let mut t = p2.time;
+    let mut t = p2.time();
     imm_row(&mut rows, t, &est.combined()?, &est.mode_probabilities());
     let mut n = 1;
     for p in rest {
         let (z, r) = convert(p)?;
         let meas = position(r)?;
-        let dt = p.time - t;
+        let dt = p.time() - t;
         let upd = if dt == 0.0 {
             imm.update(&est.into_prediction(), &meas, &z)
         } else {
             imm.step(&est, dt, &meas, &z)
         };
         est = upd.map_err(imm_error(ctx, p))?.estimate;
-        t = p.time;
+        t = p.time();
         let c = est.combined().map_err(imm_error(ctx, p))?;
         imm_row(&mut rows, t, &c, &est.mode_probabilities());
         n += 1;
@@ -774,29 +775,28 @@ fn track_multi_k<const R: usize, const K: usize>(
         v.extend(sig(est.reference()));
         v
     };
-    let mut t = p2.time;
+    let mut t = p2.time();
     imm_row(&mut rows, t, &est.combined()?, &extra(&est));
     let mut n = 1;
     for p in plots.iter().take(2).chain(rest) {
-        if p.sensor != sensor.id {
+        if p.sensor() != sensor.id {
             return Err(not_polar(
                 p,
-                &format!("plot of sensor {} after sensor {}", p.sensor, sensor.id),
+                &format!("plot of sensor {} after sensor {}", p.sensor(), sensor.id),
             ));
         }
-        let FileValue::Polar { range, azimuth } = p.value else {
+        let Measurement::Polar(plot) = p.measurement() else {
             return Err(not_polar(p, "a Cartesian report"));
         };
         if p.line <= p2.line {
             continue;
         }
-        let plot = PolarPlot::new(range, azimuth).map_err(imm_error(ctx, p))?;
-        let dt = p.time - t;
+        let dt = p.time() - t;
         est = multi
-            .step(&est, dt, &plot, &conv)
+            .step(&est, dt, plot, &conv)
             .map_err(imm_error(ctx, p))?
             .estimate;
-        t = p.time;
+        t = p.time();
         let c = est.combined().map_err(imm_error(ctx, p))?;
         imm_row(&mut rows, t, &c, &extra(&est));
         n += 1;
@@ -812,19 +812,16 @@ fn track_2d(
 ) -> Result<(String, usize), CliError> {
     let convert = |p: &FilePlot| -> Result<(Vector<2>, Matrix<2, 2>), CliError> {
         let s = ctx.sensor(p)?;
-        match p.value {
-            FileValue::Cartesian { x, y, cov } => Ok((
-                Vector::<2>::new(x, y),
-                Matrix::<2, 2>::new(cov[0], cov[1], cov[1], cov[2]),
-            )),
-            FileValue::Polar { range, azimuth } => {
+        match p.measurement() {
+            Measurement::Cartesian2(c) => Ok((*c.position(), *c.covariance())),
+            Measurement::Polar(m) => {
                 let (sr, sa) = ctx.polar_sigmas(s)?;
-                let (z, r) = unbiased(range, azimuth, sr, sa).map_err(|e| {
+                let (z, r) = unbiased(m.range(), m.azimuth(), sr, sa).map_err(|e| {
                     CliError::input(ctx.plots_path, Some(p.line), Some("range"), e.to_string())
                 })?;
                 Ok((z + Vector::<2>::new(s.position[0], s.position[1]), r))
             }
-            FileValue::Spherical { .. } | FileValue::Cartesian3 { .. } => Err(wrong_dim(ctx, p)),
+            Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(wrong_dim(ctx, p)),
         }
     };
     match *est {
@@ -840,11 +837,11 @@ fn track_2d(
         Estimator::Ekf(sa) => {
             let f = cv_ekf(sa)?;
             track_loop(ctx, plots, convert, two_point_cv2, |x, dt, p| {
-                let post = if let FileValue::Polar { range, azimuth } = p.value {
+                let post = if let Measurement::Polar(z) = p.measurement() {
                     let s = ctx.sensor(p)?;
                     let (sr, sa) = ctx.polar_sigmas(s)?;
                     let m = polar([s.position[0], s.position[1]], sr, sa)?;
-                    step(&f, x, dt, &m, &Vector::<2>::new(range, azimuth))
+                    step(&f, x, dt, &m, &z.to_vector())
                 } else {
                     let (z, r) = convert(p)?;
                     step(&f, x, dt, &position(r)?, &z)
@@ -877,25 +874,17 @@ fn track_3d(
 ) -> Result<(String, usize), CliError> {
     let convert = |p: &FilePlot| -> Result<(Vector<3>, Matrix<3, 3>), CliError> {
         let s = ctx.sensor(p)?;
-        match p.value {
-            FileValue::Cartesian3 { p: q, cov } => Ok((
-                Vector::<3>::new(q[0], q[1], q[2]),
-                Matrix::<3, 3>::new(
-                    cov[0], cov[1], cov[2], cov[1], cov[3], cov[4], cov[2], cov[4], cov[5],
-                ),
-            )),
-            FileValue::Spherical {
-                range,
-                azimuth,
-                elevation,
-            } => {
+        match p.measurement() {
+            Measurement::Cartesian3(c) => Ok((*c.position(), *c.covariance())),
+            Measurement::Spherical(m) => {
                 let sig = ctx.spherical_sigmas(s)?;
-                let (z, r) = unbiased3(range, azimuth, elevation, sig).map_err(|e| {
-                    CliError::input(ctx.plots_path, Some(p.line), Some("range"), e.to_string())
-                })?;
+                let (z, r) =
+                    unbiased3(m.range(), m.azimuth(), m.elevation(), sig).map_err(|e| {
+                        CliError::input(ctx.plots_path, Some(p.line), Some("range"), e.to_string())
+                    })?;
                 Ok((z + Vector::<3>::from(s.position), r))
             }
-            FileValue::Polar { .. } | FileValue::Cartesian { .. } => Err(wrong_dim(ctx, p)),
+            Measurement::Polar(_) | Measurement::Cartesian2(_) => Err(wrong_dim(ctx, p)),
         }
     };
     match *est {
@@ -920,15 +909,10 @@ fn track_3d(
         Estimator::Ekf(sa) => {
             let f = cv3_ekf(sa)?;
             track_loop(ctx, plots, convert, two_point_cv3, |x, dt, p| {
-                let post = if let FileValue::Spherical {
-                    range,
-                    azimuth,
-                    elevation,
-                } = p.value
-                {
+                let post = if let Measurement::Spherical(z) = p.measurement() {
                     let s = ctx.sensor(p)?;
                     let m = spherical(s.position, ctx.spherical_sigmas(s)?)?;
-                    step(&f, x, dt, &m, &Vector::<3>::new(range, azimuth, elevation))
+                    step(&f, x, dt, &m, &z.to_vector())
                 } else {
                     let (z, r) = convert(p)?;
                     step(&f, x, dt, &position3(r)?, &z)

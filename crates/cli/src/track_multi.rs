@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use argus_core_math::{Matrix, Vector};
+use argus_sensors::Measurement;
 use argus_tracker::{
     AssociationConfig, AssociationField, DeletionReason, EstimatorConfig, EstimatorField,
     MULTI_IMM_HYPOTHESES, Plot, PolarNoise, ScoreConfig, ScoreField, SensorConfig, SensorField,
@@ -24,7 +24,7 @@ use toml::Spanned;
 
 use crate::error::CliError;
 use crate::output::write_atomic;
-use crate::plotfile::{FilePlot, FileValue};
+use crate::plotfile::FilePlot;
 use crate::track::{Sensor, line_of};
 
 /// The parts of the configuration file this module reads (the rest is `track.rs`'s).
@@ -616,16 +616,9 @@ pub(crate) struct Files<'a> {
 /// them with its sensor's noise, or the EKF and multi-IMM use them directly), Cartesian
 /// reports with their covariance.
 fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliError> {
-    let sensor = SensorId(p.sensor);
-    match p.value {
-        FileValue::Cartesian { x, y, cov } => Ok(Plot::cartesian(
-            p.time,
-            sensor,
-            Vector::<2>::new(x, y),
-            Matrix::<2, 2>::new(cov[0], cov[1], cov[1], cov[2]),
-        )),
-        FileValue::Polar { range, azimuth } => Ok(Plot::polar(p.time, sensor, range, azimuth)),
-        FileValue::Spherical { .. } | FileValue::Cartesian3 { .. } => Err(CliError::input(
+    match p.measurement() {
+        Measurement::Cartesian2(_) | Measurement::Polar(_) => Ok(p.plot),
+        Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(CliError::input(
             files.plots,
             Some(p.line),
             None,
@@ -809,10 +802,10 @@ pub(crate) fn run(
     let (mut rows, mut scans, mut assigned) = (0, 0, 0);
     let mut start = 0;
     while start < converted.len() {
-        let (t, s) = (converted[start].time, converted[start].sensor);
+        let (t, s) = (converted[start].time(), converted[start].sensor());
         let len = converted[start..]
             .iter()
-            .take_while(|p| p.sensor == s && p.time.total_cmp(&t).is_eq())
+            .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
             .count();
         let report = tracker
             .process_scan(t, s, &converted[start..start + len])

@@ -212,7 +212,7 @@ impl Scenario for Gimpo {
             generate_plots(&truth, &sensors, &mut rng)?
                 .iter()
                 .skip(2)
-                .map(|pl| pl.time)
+                .map(|pl| pl.plot.time())
                 .collect()
         };
         let stats = report::Stats::new(&times, &runs, traj.end());

@@ -6,11 +6,12 @@ use argus_core_math::Vector;
 use argus_filters::{Kf, two_point_cv2};
 use argus_imm::{
     DifferenceEstimate, DifferenceNoiseImm, EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate,
-    MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion, PolarPlot,
+    MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion,
     UnbiasedConversion, VariationalEstimate, VariationalNoiseImm,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
-use argus_sim::{Measurement, SensorSpec, Trajectory, Truth, generate_plots};
+use argus_sensors::{Measurement, PolarMeasurement};
+use argus_sim::{SensorSpec, Trajectory, Truth, generate_plots};
 
 use crate::error::ScenarioError;
 use crate::params::Params;
@@ -63,13 +64,11 @@ pub(super) fn simulate(
     truth: &Truth,
     sensors: &[SensorSpec],
     rng: &mut argus_sim::ChaCha8Rng,
-) -> Result<Vec<(f64, PolarPlot)>, ScenarioError> {
+) -> Result<Vec<(f64, PolarMeasurement)>, ScenarioError> {
     Ok(generate_plots(truth, sensors, rng)?
         .iter()
-        .filter_map(|pl| match pl.measurement {
-            Measurement::Polar { range, azimuth } => {
-                PolarPlot::new(range, azimuth).ok().map(|x| (pl.time, x))
-            }
+        .filter_map(|pl| match pl.plot.measurement() {
+            Measurement::Polar(m) => Some((pl.plot.time(), *m)),
             _ => None,
         })
         .collect())
@@ -83,12 +82,12 @@ fn se(x: &Vector<4>, tr: &Vector<4>) -> f64 {
 /// One run's plots and truth, as the estimators read them.
 struct RunInput<'a> {
     traj: &'a Trajectory,
-    first: &'a (f64, PolarPlot),
-    second: &'a (f64, PolarPlot),
+    first: &'a (f64, PolarMeasurement),
+    second: &'a (f64, PolarMeasurement),
     /// Time of the second plot, where the estimators start.
     t2: f64,
     /// The plots after the two initialising ones.
-    rest: &'a [(f64, PolarPlot)],
+    rest: &'a [(f64, PolarMeasurement)],
 }
 
 impl RunInput<'_> {
@@ -174,7 +173,7 @@ impl Estimators {
         &self,
         traj: &Trajectory,
         run: u64,
-        plots: &[(f64, PolarPlot)],
+        plots: &[(f64, PolarMeasurement)],
     ) -> Result<RunOut, ScenarioError> {
         let (Some(first), Some(second)) = (plots.first(), plots.get(1)) else {
             return Err(ScenarioError::Degenerate {
