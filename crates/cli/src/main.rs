@@ -14,7 +14,6 @@ mod report;
 mod scenario;
 mod scenarios;
 mod track;
-mod track_multi;
 
 use std::io::IsTerminal;
 use std::ops::Range;
