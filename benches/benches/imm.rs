@@ -1,4 +1,5 @@
-//! IMM (CV + 2 CT, seed 000) step and the 5 × 3 multi-IMM step.
+//! IMM (CV + 2 CT, seed 000) step, the 5 × 3 multi-IMM step, and the aircraft IMM step
+//! (2 CV on 4 states + CT with the turn rate on 5, EKFs, a (range, azimuth) plot).
 //!
 //! Targets (issue 4): IMM step ≤ 1 µs, multi-IMM step ≤ 5 µs on the project machine.
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
@@ -8,11 +9,12 @@ use std::hint::black_box;
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::Kf;
 use argus_imm::{
-    EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate, MarkovMatrix, MultiImm, MultiImmEstimate,
-    NoiseGrid, NoiseVariances, PlotConversion, PolarPlot, UnbiasedConversion, VariationalEstimate,
-    VariationalNoiseImm,
+    AircraftRadar, AircraftTuning, EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate,
+    MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion, PolarPlot,
+    UnbiasedConversion, VariationalEstimate, VariationalNoiseImm,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
+use argus_sensors::RadarNoise;
 use criterion::{Criterion, criterion_group, criterion_main};
 
 fn paper_imm() -> Imm<Kf<PlanarModel>, 4, 3> {
@@ -87,6 +89,33 @@ fn benches(c: &mut Criterion) {
     g.bench_function("evidence_imm_step", |b| {
         b.iter(|| {
             ev.step(black_box(&eest), 5.0, black_box(&plot), &conv)
+                .unwrap()
+        });
+    });
+
+    // The aircraft IMM: mixing across the two state sizes, three EKF predictions and polar
+    // updates, from a start after two plots 5 s apart.
+    let tuning = AircraftTuning::<2, 3>::default();
+    let aircraft = tuning.build().unwrap();
+    let radar = AircraftRadar::new(
+        [0.0, 0.0],
+        RadarNoise::constant(70.0, 0.08_f64.to_radians(), 0.0).unwrap(),
+    )
+    .unwrap();
+    let polar = |x: f64, y: f64| Vector::<2>::new(x.hypot(y), y.atan2(x));
+    let aest = tuning
+        .start(
+            &radar,
+            &polar(-60_000.0 - 450.0, -20_000.0),
+            &polar(-60_000.0, -20_000.0),
+            5.0,
+        )
+        .unwrap();
+    let z = polar(x, y);
+    g.bench_function("aircraft_imm_2cv_ct_step", |b| {
+        b.iter(|| {
+            aircraft
+                .step(black_box(&aest), 5.0, &radar, black_box(&z))
                 .unwrap()
         });
     });

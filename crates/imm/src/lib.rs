@@ -14,6 +14,12 @@
 //! - [`DifferenceNoiseImm`]: beyond the paper, one IMM whose range and azimuth variances
 //!   come from third differences of the raw plots (their expectation is the truth whatever
 //!   the IMM's motion models); [`EvidenceNoiseImm`]: five IMMs and a fitted likelihood curve.
+//! - [`AircraftImm`]: an IMM of unequal state sizes for aircraft — CV modes on
+//!   `[x, vx, y, vy]` beside a coordinated turn with the turn rate as a state, mixed by
+//!   Granström, Willett & Bar-Shalom's (2015) unbiased rule ([`Augmentation`]), updated
+//!   in (range, azimuth) ([`AircraftRadar`]), with a documented default tuning
+//!   ([`AircraftTuning`]) and a two-point start ([`two_point_start`]); see the
+//!   [`aircraft`] module docs and docs/aircraft-imm.md.
 //! - Polar plots are converted with the unbiased conversion ([`unbiased_conversion`],
 //!   [`UnbiasedConversion`]) using each hypothesis' own variances.
 //!
@@ -34,6 +40,7 @@
 //! # Ok::<(), argus_imm::ImmError>(())
 //! ```
 
+pub mod aircraft;
 mod difference;
 mod embed;
 mod error;
@@ -49,6 +56,10 @@ mod test_support;
 #[cfg(test)]
 mod tests;
 
+pub use aircraft::{
+    AircraftEkf, AircraftEstimate, AircraftImm, AircraftPrediction, AircraftRadar, AircraftTuning,
+    AircraftUpdate, Augmentation, two_point_start,
+};
 pub use difference::{DifferenceEstimate, DifferenceNoiseImm};
 pub use embed::Embedded;
 pub use error::ImmError;
