@@ -16,6 +16,10 @@
 //! - [`Ukf`]: unscented Kalman filter (scaled unscented transform, allocation-free).
 //! - [`two_point_cv1`], [`two_point_cv2`], [`two_point_cv3`]: two-point initiation.
 //! - [`nees`], [`ChiSquareAverage`]: NEES/NIS consistency with chi-square bounds.
+//! - [`RtsTrack`], [`rts_smooth`]: fixed-interval RTS smoothing (KF, EKF) and the unscented
+//!   RTS smoother (UKF) from a recorded forward pass ([`SmoothingFilter`]);
+//!   [`FixedLagSmoother`]: fixed-lag smoothing ([`Lag`] in steps or seconds); the
+//!   equations and references are in [`smooth`].
 
 mod cd_ekf;
 mod consistency;
@@ -26,6 +30,7 @@ mod kf;
 mod linearized;
 mod prediction;
 mod second_order;
+pub mod smooth;
 mod ukf;
 
 #[cfg(test)]
@@ -39,6 +44,10 @@ pub use init::{two_point_cv1, two_point_cv2, two_point_cv3};
 pub use kf::Kf;
 pub use prediction::{CovarianceForm, Innovation, MeasurementPrediction};
 pub use second_order::second_order_terms;
+pub use smooth::{
+    FixedLagSmoother, Lag, Lagged, RtsStep, RtsTrack, SmoothError, SmoothingFilter, Transition,
+    rts_smooth, rts_smooth_into, rts_step,
+};
 pub use ukf::{Ukf, UtParams};
 
 use argus_core_math::{Gaussian, Vector};

@@ -149,6 +149,42 @@ impl<const N: usize, Mo> Ukf<N, Mo> {
     }
 }
 
+impl<const N: usize, Mo: MotionModel<N>> Ukf<N, Mo> {
+    /// The unscented prediction, and with `CROSS` the cross covariance of the prior and
+    /// the prediction, `C = Σᵢ Wᵢ sᵢ dᵢᵀ` (Särkkä 2008 eq (14): the centre point's term
+    /// is zero and `Σᵢ Wᵢ sᵢ = 0`, so the propagated mean drops out); zero without it.
+    #[allow(non_snake_case)]
+    #[inline]
+    pub(crate) fn unscented_predict<const CROSS: bool>(
+        &self,
+        prior: &Gaussian<N>,
+        dt: f64,
+    ) -> Result<(Gaussian<N>, Matrix<N, N>), FilterError> {
+        check_dt(dt)?;
+        let x = prior.mean();
+        let y0 = self.model.propagate(x, dt);
+        check_finite_vector(&y0, "propagated sigma point")?;
+        let mut m = Vector::<N>::zeros();
+        let mut S2 = Matrix::<N, N>::zeros();
+        let mut C = Matrix::<N, N>::zeros();
+        let w = self.weight;
+        self.for_each_offset(prior, |s| {
+            let d = self.model.propagate(&(x + s), dt) - y0;
+            m.axpy(w, &d, 1.0);
+            S2.ger(w, &d, &d, 1.0);
+            if CROSS {
+                C.ger(w, s, &d, 1.0);
+            }
+        })?;
+        check_finite_vector(&m, "propagated sigma point")?;
+        let Q = self.model.process_noise(x, dt);
+        check_finite_matrix(&Q, "process noise Q")?;
+        let cov = S2 + m * m.transpose() * self.centre_extra + Q;
+        let g = checked_gaussian(y0 + m, cov, "predicted mean", "predicted covariance")?;
+        Ok((g, C))
+    }
+}
+
 impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ukf<N, Mo> {
     /// Unscented prediction: sigma points of the prior through `f`, plus `Q(x̂, dt)`.
     ///
@@ -156,25 +192,8 @@ impl<const N: usize, Mo: MotionModel<N>> GaussianFilter<N> for Ukf<N, Mo> {
     /// [`FilterError::InvalidInterval`] for a bad `dt`; [`FilterError::Math`] when a
     /// propagated point or `Q` is non-finite or `P⁻` is not positive definite (possible
     /// with a negative `W₀ᶜ`).
-    #[allow(non_snake_case)]
     fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
-        check_dt(dt)?;
-        let x = prior.mean();
-        let y0 = self.model.propagate(x, dt);
-        check_finite_vector(&y0, "propagated sigma point")?;
-        let mut m = Vector::<N>::zeros();
-        let mut S2 = Matrix::<N, N>::zeros();
-        let w = self.weight;
-        self.for_each_offset(prior, |s| {
-            let d = self.model.propagate(&(x + s), dt) - y0;
-            m.axpy(w, &d, 1.0);
-            S2.ger(w, &d, &d, 1.0);
-        })?;
-        check_finite_vector(&m, "propagated sigma point")?;
-        let Q = self.model.process_noise(x, dt);
-        check_finite_matrix(&Q, "process noise Q")?;
-        let cov = S2 + m * m.transpose() * self.centre_extra + Q;
-        checked_gaussian(y0 + m, cov, "predicted mean", "predicted covariance")
+        Ok(self.unscented_predict::<false>(prior, dt)?.0)
     }
 
     /// Unscented measurement prediction: `ẑ`, `S = P_zz + R(x⁻)`, `P_xz`; measurement

@@ -20,6 +20,9 @@
 //!   in (range, azimuth) ([`AircraftRadar`]), with a documented default tuning
 //!   ([`AircraftTuning`]) and a two-point start ([`two_point_start`]); see the
 //!   [`aircraft`] module docs and docs/aircraft-imm.md.
+//! - [`ImmTrack`], [`imm_smooth`]: fixed-interval IMM smoothing (forward–backward, after
+//!   Kim 1994, expectation-correction weights of Barber 2006) with smoothed mode
+//!   probabilities; the equations and references are in [`smooth`].
 //! - Polar plots are converted with the unbiased conversion ([`unbiased_conversion`],
 //!   [`UnbiasedConversion`]) using each hypothesis' own variances.
 //!
@@ -49,6 +52,7 @@ mod imm;
 mod markov;
 mod multi;
 mod polar;
+pub mod smooth;
 mod variational;
 
 #[cfg(test)]
@@ -70,5 +74,8 @@ pub use multi::{MultiImm, MultiImmEstimate, MultiImmUpdate, NoiseGrid};
 pub use polar::{
     NoiseVariances, PlotConversion, PolarPlot, PositionMeasurement, UnbiasedConversion,
     unbiased_conversion,
+};
+pub use smooth::{
+    ImmSmoothError, ImmSmoothed, ImmStep, ImmTrack, ImmTransition, PairWeights, imm_smooth,
 };
 pub use variational::{VariationalEstimate, VariationalNoiseImm};

@@ -13,7 +13,7 @@
 #![allow(clippy::unwrap_used)] // test code: a failure should panic with its message
 #![allow(non_snake_case)] // the papers' matrix names
 
-use argus_core_math::{Gaussian, Matrix, Vector};
+use argus_core_math::{Gaussian, Matrix, Vector, chi2_quantile};
 use argus_registration::simulation::{RunRecord, ScenarioConfig, Summary, run};
 use argus_registration::{
     BiasEstimator, BiasedLocalFilter, BiasedTrack, Initiation, Linearization, position_matrix,
@@ -225,11 +225,12 @@ fn bias32_matches_its_derived_accuracy() {
     let mom = covariance_analysis(&cfg);
     let (recs, s) = monte_carlo(&cfg, runs);
     let end = s.times.len() - 1;
-    // Every plot of every target is used: 32 targets × (301 + 300) plots, one
+    // Every plot of every target is used: 32 targets × (300 + 300) plots (SPEC's schedule:
+    // each radar's first plot is its first scan after the start, 1 s and 0.5 s), one
     // pseudo-measurement each (the other sensor's track exists from t = 0).
-    assert_eq!(mom.updates, 32 * 601);
+    assert_eq!(mom.updates, 32 * 600);
     for r in &recs {
-        assert_eq!(r.proposed_updates, 32 * 601);
+        assert_eq!(r.proposed_updates, 32 * 600);
     }
     println!("derived mean of b̂ − b: {:?}", mom.mean.as_slice());
     let names = [
@@ -253,11 +254,25 @@ fn bias32_matches_its_derived_accuracy() {
             100.0 * sd / exp,
             claimed.sqrt()
         );
-        // The Monte Carlo MSE over `runs` runs lies within 3.5 of its standard deviations
-        // (derived above) of the derived MSE (two-sided 99.95 % for a Gaussian average).
+        // The Monte Carlo MSE is a weighted sum of (non-central) χ²(1) terms, skewed and
+        // ≥ 0, so a Gaussian ±3.5 sd band reaches below zero and cannot fail low (issue
+        // 17 §3). Its sampling distribution by moment matching (Satterthwaite): MSE ≈ exp ·
+        // χ²(ν)/ν with ν = 2 exp² / sd² (ν ≈ 20–25 here for 20 runs); the two-sided 99.9 %
+        // interval [exp·χ²_ν(0.0005)/ν, exp·χ²_ν(0.9995)/ν] is ≈ [0.27, 2.1] × exp, which
+        // can fail on both sides. (More runs would narrow it, but 20 runs already take
+        // ~15 s in the dev profile; `argus run bias-32` checks 100.)
+        let nu = 2.0 * exp * exp / (sd * sd);
+        let lo = exp * chi2_quantile(0.0005, nu).unwrap() / nu;
+        let hi = exp * chi2_quantile(0.9995, nu).unwrap() / nu;
+        println!(
+            "{name}: MSE ratio {:.3}, 99.9 % interval [{:.3}, {:.3}] (nu {nu:.1})",
+            mc / exp,
+            lo / exp,
+            hi / exp
+        );
         assert!(
-            (mc - exp).abs() < 3.5 * sd,
-            "{name}: Monte Carlo MSE {mc:.4e} vs derived {exp:.4e} ± {sd:.2e}"
+            (lo..=hi).contains(&mc),
+            "{name}: Monte Carlo MSE {mc:.4e} vs derived {exp:.4e}, 99.9 % interval [{lo:.3e}, {hi:.3e}]"
         );
     }
     // Issue 6's thresholds against the derived values: range offset below 2 m holds with

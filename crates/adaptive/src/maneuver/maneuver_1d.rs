@@ -381,6 +381,31 @@ impl Stats1d {
         hit as f64 / all.len().max(1) as f64
     }
 
+    /// The mean of switch `i`'s detected delays, s (NaN when none was detected). A missed
+    /// switch is not in the mean: see [`Stats1d::missed`] and [`Stats1d::delay_p95`].
+    #[must_use]
+    pub fn delay_mean(&self, i: usize) -> f64 {
+        let d = self.detected_delays(i);
+        if d.is_empty() {
+            f64::NAN
+        } else {
+            d.iter().sum::<f64>() / d.len() as f64
+        }
+    }
+
+    /// The 95th percentile (nearest rank) of switch `i`'s delay over all runs, a missed
+    /// switch counting as never detected: `+∞` when more than 5 % of the runs missed it.
+    #[must_use]
+    pub fn delay_p95(&self, i: usize) -> f64 {
+        let mut d: Vec<f64> = self
+            .delays
+            .get(i)
+            .map(|v| v.iter().map(|d| d.unwrap_or(f64::INFINITY)).collect())
+            .unwrap_or_default();
+        d.sort_by(f64::total_cmp);
+        quantile(&d, 0.95)
+    }
+
     /// The `p`-quantile (nearest rank, `0 ≤ p ≤ 1`) of the detected delays pooled over
     /// switches, s (NaN when nothing was detected).
     #[must_use]
@@ -389,6 +414,88 @@ impl Stats1d {
         d.sort_by(f64::total_cmp);
         quantile(&d, p)
     }
+}
+
+/// The noise-free GLRT statistic `λ(τ)` a time `τ` after an onset at `on` (s) from the
+/// steady running of the plain filter: the plots are the noise-free truth with the
+/// acceleration switched on at `on`, the detector never fires (η = ∞ in effect) and its
+/// window is the whole run (`N = 0`), so `λ` is the largest statistic over all onsets,
+/// that of the true onset up to the filter's start-up. The statistic at the true onset is
+/// non-central χ²(1) with non-centrality `λ`, so a detection by `τ` has probability
+/// ≈ `Φ(√λ − √η)` ([`within_derived`]).
+///
+/// # Errors
+/// [`AdaptiveError`] for a bad configuration or when `on + τ` is not a plot time of the run.
+pub fn noise_free_statistic(
+    cfg: &Maneuver1dConfig,
+    on: f64,
+    tau: f64,
+) -> Result<f64, AdaptiveError> {
+    let windows = [(on, f64::MAX)];
+    validate_windows(&windows)?;
+    let target = on + tau;
+    let k_end = (0..cfg.steps)
+        .find(|&k| (cfg.time(k) - target).abs() < 1e-9)
+        .ok_or(AdaptiveError::InvalidParameter {
+            what: "noise-free statistic time (on + tau)",
+            value: target,
+            reason: "must be a plot time of the run",
+        })?;
+    let quiet = Maneuver1dConfig {
+        q: 0.0,
+        max_age: k_end + 1,
+        min_age: 0,
+        ..*cfg
+    };
+    let model = Cv1D::new(CvNoise::VelocityPerStep { q: cfg.q })?;
+    let meas = CartesianPosition::<2, 1>::new([0], Matrix::<1, 1>::new(cfg.r))?;
+    let ad = ManeuverFilter::new(
+        Kf::new(model),
+        ModelInput::new(model, Matrix::<2, 1>::new(0.0, 1.0))?,
+        Compensation::Glrt,
+    );
+    let x0 = Vector::<2>::new(cfg.x0, cfg.v0);
+    let initial = Gaussian::new(x0, Matrix::<2, 2>::identity() * cfg.p0)?;
+    let mut st = ManeuverState::<2, 1, 1>::new(initial, quiet.glrt(f64::MAX)?);
+    let t = cfg.dt;
+    let phi = Matrix::<2, 2>::new(1.0, t, 0.0, 1.0);
+    let gamma = Vector::<2>::new(0.5 * t * t, t);
+    let mut x = x0;
+    let mut lambda = f64::NAN;
+    for k in 0..=k_end {
+        let a = if accel_on(&windows, k as f64 * t) {
+            cfg.accel
+        } else {
+            0.0
+        };
+        x = phi * x + gamma * a;
+        let rep = ad.step(&mut st, t, &meas, &Vector::<1>::new(x[0]))?;
+        lambda = rep.max_statistic.map_or(f64::NAN, |m| m.0);
+    }
+    Ok(lambda)
+}
+
+/// The standard normal CDF `Φ(x)` (from the χ²(1) CDF: `Φ(x) = ½ (1 + sign x · F_χ²₁(x²))`).
+#[must_use]
+pub fn normal_cdf(x: f64) -> f64 {
+    if !x.is_finite() {
+        return if x > 0.0 {
+            1.0
+        } else if x < 0.0 {
+            0.0
+        } else {
+            f64::NAN
+        };
+    }
+    let c = argus_core_math::chi2_cdf(x * x, 1.0).unwrap_or(f64::NAN);
+    0.5 * (1.0 + x.signum() * c)
+}
+
+/// The derived chance of a detection within `τ` of a switch, `Φ(√λ(τ) − √η)`, from the
+/// noise-free statistic `λ(τ)` ([`noise_free_statistic`]).
+#[must_use]
+pub fn within_derived(lambda: f64, eta: f64) -> f64 {
+    normal_cdf(lambda.sqrt() - eta.sqrt())
 }
 
 /// Nearest-rank quantile of sorted data (NaN when empty).

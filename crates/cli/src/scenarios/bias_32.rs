@@ -572,12 +572,12 @@ mod tests {
         assert_eq!(report.rows.len(), 4 * 5);
         for (row, (s, n)) in sweep.rows.iter().zip([(2, 4), (2, 9), (3, 4), (3, 9)]) {
             assert_eq!((row[0] as usize, row[1] as usize), (s, n));
-            // Plots: every sensor sees every target at 1 s steps over [offset, 3 s].
+            // Plots: every sensor sees every target at 1 s steps over [offset, 3 s], the
+            // offset k/s s, sensor 0's 1 s (its first scan after the start, issue 17).
             let per_sensor: usize = (0..s)
                 .map(|k| {
-                    (0..=3)
-                        .filter(|&t| f64::from(t) + k as f64 / s as f64 <= 3.0)
-                        .count()
+                    let offset = if k == 0 { 1.0 } else { k as f64 / s as f64 };
+                    (0..=3).filter(|&t| f64::from(t) + offset <= 3.0).count()
                 })
                 .sum();
             assert_eq!(row[2] as usize, per_sensor * n);

@@ -77,6 +77,9 @@ pub(crate) struct FilterResult {
     pub(crate) anees: f64,
     /// Steady-state position RMSE over the second half of the steps (kept runs).
     pub(crate) rmse: f64,
+    /// 95 % interval of a time-averaged ANEES over this filter's kept runs (4·kept dof,
+    /// conservative).
+    pub(crate) interval: (f64, f64),
 }
 
 /// Results of one configuration.
@@ -91,8 +94,6 @@ pub(crate) struct ConfigResult {
     pub(crate) predicted_hyca: Option<f64>,
     /// PDA-IRF-predicted steady-state position RMSE (None: diverges).
     pub(crate) predicted_pda: Option<f64>,
-    /// 95 % interval of a time-averaged ANEES over `kept` runs (4·kept dof, conservative).
-    pub(crate) interval: (f64, f64),
 }
 
 /// Reads one prediction from a configuration's results.
@@ -310,22 +311,21 @@ pub(crate) fn run_config(
             }
         }
         let cnt = cnt.max(1) as f64;
+        let iv = anees_interval(4, kept.len().max(1), 0.95)?;
         filters.push(FilterResult {
             metrics,
             lost,
             runs: n_runs,
             anees: nees / cnt,
             rmse: (se / cnt).sqrt(),
+            interval: (iv.lower, iv.upper),
         });
     }
-    let kept_pda = filters.get(4).map_or(n_runs, |f| n_runs - f.lost).max(1);
-    let iv = anees_interval(4, kept_pda, 0.95)?;
     Ok(ConfigResult {
         filters,
         predicted_nn: predicted_rmse(&nn_pred, &p0)?,
         predicted_hyca: predicted_rmse(&hyca, &p0)?,
         predicted_pda: predicted_rmse(&pda_pred, &p0)?,
-        interval: (iv.lower, iv.upper),
     })
 }
 
@@ -431,7 +431,7 @@ impl Scenario for Clutter {
                 for (name, f) in FILTERS.iter().zip(&r.filters) {
                     let key = format!("{name}_{snr:.0}dB_{lam:e}");
                     let loss = f.lost as f64 / f.runs.max(1) as f64;
-                    let inside = r.interval.0 <= f.anees && f.anees <= r.interval.1;
+                    let inside = f.interval.0 <= f.anees && f.anees <= f.interval.1;
                     report.rows.push(
                         Row::new(
                             format!("{key}_rmse"),
@@ -443,8 +443,8 @@ impl Scenario for Clutter {
                             "ANEES {:.2} ({}) in [{:.2}, {:.2}], loss {:.1} %",
                             f.anees,
                             if inside { "inside" } else { "outside" },
-                            r.interval.0,
-                            r.interval.1,
+                            f.interval.0,
+                            f.interval.1,
                             100.0 * loss
                         )),
                     );
@@ -590,30 +590,28 @@ mod tests {
         // Moderate clutter (λ = 3e-5 m⁻², about one clutter plot per gate), 10 dB,
         // 150 runs × 60 scans, seed 11. Claims of issue 5 / seed 002.
         let r = run_config(&reduced(3e-5, 10.0), 11, 0..150, &|| {}).unwrap();
-        let (lo, hi) = r.interval;
         let f = |i: usize| r.filters.get(i).unwrap();
         eprintln!(
-            "interval [{lo:.2}, {hi:.2}]; {:?}; pred NN {:?} PDA {:?}",
+            "{:?}; pred NN {:?} PDA {:?}",
             r.filters
                 .iter()
-                .map(|f| (f.rmse, f.anees, f.lost))
+                .map(|f| (f.rmse, f.anees, f.lost, f.interval))
                 .collect::<Vec<_>>(),
             r.predicted_nn,
             r.predicted_pda
         );
-        // PDA and PSN consistent: ANEES inside the 95 % interval.
-        assert!(
-            lo <= f(4).anees && f(4).anees <= hi,
-            "PDA ANEES {}",
-            f(4).anees
-        );
-        assert!(
-            lo <= f(3).anees && f(3).anees <= hi,
-            "PSN ANEES {}",
-            f(3).anees
-        );
-        // SN over-confident: ANEES above the interval.
-        assert!(f(2).anees > hi, "SN ANEES {}", f(2).anees);
+        // PDA and PSN consistent: ANEES inside the 95 % interval of their own kept runs.
+        let inside = |i: usize| f(i).interval.0 <= f(i).anees && f(i).anees <= f(i).interval.1;
+        assert!(inside(4), "PDA ANEES {} in {:?}", f(4).anees, f(4).interval);
+        assert!(inside(3), "PSN ANEES {} in {:?}", f(3).anees, f(3).interval);
+        // SN over-confident: ANEES above its interval.
+        assert!(f(2).anees > f(2).interval.1, "SN ANEES {}", f(2).anees);
+        // Each interval is that of the filter's own kept-run count (issue 17 §3).
+        for fi in &r.filters {
+            let kept = (fi.runs - fi.lost).max(1);
+            let iv = anees_interval(4, kept, 0.95).unwrap();
+            assert_eq!(fi.interval, (iv.lower, iv.upper));
+        }
     }
 
     #[test]

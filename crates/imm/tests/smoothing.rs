@@ -1,0 +1,269 @@
+//! IMM smoothing: one mode reduces to the RTS smoother, the smoothed IMM on seed 000's
+//! Gimpo trajectory (consistency and RMS position error against the filtered IMM), and
+//! the errors of bad sequences.
+
+// A test binary: a panic on an unexpected error is the failure report.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use argus_core_math::{Gaussian, Matrix, Vector, anees_interval};
+use argus_filters::{Kf, RtsTrack, SmoothError, two_point_cv2};
+use argus_imm::{
+    Imm, ImmEstimate, ImmSmoothError, ImmTrack, MarkovMatrix, NoiseVariances, PairWeights,
+    PlotConversion, PolarPlot, UnbiasedConversion, unbiased_conversion,
+};
+use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
+use argus_sensors::CartesianPosition;
+use argus_sim::{
+    KinematicState, Measurement, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory,
+    Truth, generate_plots, run_rng,
+};
+
+#[test]
+fn one_mode_is_the_rts_smoother() {
+    // With R = 1 (π = [1]) the backward mixing is the identity and eqs (5)–(6) are the
+    // RTS step: the IMM smoother equals RtsTrack's to round-off (1e-9 relative).
+    let kf = Kf::new(Cv2D::discrete(0.7).unwrap());
+    let imm = Imm::new([kf], MarkovMatrix::new([[1.0]]).unwrap()).unwrap();
+    let pos = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::new(300.0, 40.0, 40.0, 200.0)).unwrap();
+    let g = Gaussian::new(
+        Vector::<4>::new(0.0, 10.0, 0.0, -5.0),
+        Matrix::<4, 4>::identity() * 1e3,
+    )
+    .unwrap();
+    let mut it = ImmTrack::new(*imm.markov(), 0.0, ImmEstimate::new([g], [1.0]).unwrap()).unwrap();
+    let mut rt = RtsTrack::new(0.0, g).unwrap();
+    for k in 1..=40 {
+        let t = 1.5 * f64::from(k) + 0.3 * f64::from(k % 3);
+        let z = Vector::<2>::new(
+            10.0 * t + 20.0 * (t * 0.3).sin(),
+            -5.0 * t + 15.0 * (t * 0.2).cos(),
+        );
+        it.step(&imm, t, &pos, &z).unwrap();
+        rt.step(&kf, t, &pos, &z).unwrap();
+    }
+    let a = it.smooth().unwrap();
+    let b = rt.smooth().unwrap();
+    for (k, (a, b)) in a.iter().zip(&b).enumerate() {
+        assert!(
+            (a.combined.mean() - b.mean()).amax() < 1e-9 * b.mean().amax(),
+            "step {k}"
+        );
+        assert!(
+            (a.combined.cov() - b.cov()).amax() < 1e-9 * b.cov().amax(),
+            "step {k}"
+        );
+        assert!((a.mode_probabilities[0] - 1.0).abs() < 1e-12);
+    }
+}
+
+/// Table 1 of seed 000 (duration s, turn rate deg/s; 0 = CV), as in the gimpo scenario.
+const SEGMENTS: [(f64, f64); 10] = [
+    (330.0, 0.0),
+    (63.0, 1.5),
+    (120.0, 0.0),
+    (57.0, -0.25),
+    (105.0, 0.0),
+    (43.0, -2.0),
+    (122.0, 0.0),
+    (23.0, -2.5),
+    (70.0, -0.5),
+    (86.0, 0.0),
+];
+
+/// The paper's IMM (§3.1): CV σv = 0.1 m/s², CT ±3 deg/s σv = 0.5 m/s², eq (20).
+fn paper_imm() -> Imm<Kf<PlanarModel>, 4, 3> {
+    let ct = |w: f64| {
+        Kf::new(PlanarModel::from(
+            CoordinatedTurn::from_degrees_per_second(w, 0.5).unwrap(),
+        ))
+    };
+    let cv = Kf::new(PlanarModel::from(Cv2D::discrete(0.1).unwrap()));
+    let pi =
+        MarkovMatrix::new([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]]).unwrap();
+    Imm::new([cv, ct(3.0), ct(-3.0)], pi).unwrap()
+}
+
+fn gimpo_campaign(weights: PairWeights) -> f64 {
+    // Seed 000's scene (crates/cli/src/scenarios/gimpo.rs): the Table 1 approach from
+    // (−60 km, −20 km) at 90 m/s, a rotating beam of period 5 s at the origin, σr = 70 m,
+    // σθ = 0.08°; the paper's IMM with the true R on unbiased converted plots, two-point
+    // start, μ₀ uniform. 30 seeded runs.
+    let runs = 30_u64;
+    let (sigma_r, sigma_th) = (70.0, 0.08_f64.to_radians());
+    let segments = SEGMENTS
+        .iter()
+        .map(|&(duration, w)| {
+            if w == 0.0 {
+                Segment::ConstantVelocity { duration }
+            } else {
+                Segment::Turn {
+                    duration,
+                    rate: w.to_radians(),
+                }
+            }
+        })
+        .collect();
+    let traj = Trajectory::new(
+        0.0,
+        KinematicState::planar(-60_000.0, -20_000.0, 90.0, 0.0),
+        segments,
+    )
+    .unwrap();
+    let mut truth = Truth::new();
+    truth.add(traj.clone());
+    let radar = SensorSpec::new(
+        SensorId(1),
+        Vector::<3>::zeros(),
+        SensorKind::Polar {
+            sigma_range: sigma_r,
+            sigma_azimuth: sigma_th,
+        },
+        Schedule::RotatingBeam {
+            period: 5.0,
+            azimuth_at_zero: 0.0,
+        },
+    )
+    .unwrap();
+    let imm = paper_imm();
+    let var = NoiseVariances::from_sigmas(sigma_r, sigma_th).unwrap();
+    let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
+    // Per step: Σ NEES smoothed, Σ NEES filtered, Σ squared position error smoothed,
+    // filtered, and the time.
+    let mut acc: Vec<[f64; 5]> = Vec::new();
+    for run in 0..runs {
+        let mut rng = run_rng(0, run);
+        let plots: Vec<(f64, PolarPlot)> =
+            generate_plots(&truth, std::slice::from_ref(&radar), &mut rng)
+                .unwrap()
+                .iter()
+                .filter_map(|pl| match pl.measurement {
+                    Measurement::Polar { range, azimuth } => {
+                        PolarPlot::new(range, azimuth).ok().map(|x| (pl.time, x))
+                    }
+                    _ => None,
+                })
+                .collect();
+        let ((t1, p1), (t2, p2)) = (plots[0], plots[1]);
+        let (z1, r1) = unbiased_conversion(&p1, &var).unwrap();
+        let (z2, r2) = unbiased_conversion(&p2, &var).unwrap();
+        let g = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1).unwrap();
+        let start = ImmEstimate::from_common(g, [1.0 / 3.0; 3]).unwrap();
+        let mut track = ImmTrack::new(*imm.markov(), t2, start).unwrap();
+        track.reserve(plots.len());
+        for (t, pl) in &plots[2..] {
+            let (m, z) = conv.convert(pl, &var).unwrap();
+            track.step(&imm, *t, &m, &z).unwrap();
+        }
+        let smoothed = track.smooth_with(weights).unwrap();
+        acc.resize(smoothed.len(), [0.0; 5]);
+        for ((s, st), a) in smoothed.iter().zip(track.steps()).zip(acc.iter_mut()) {
+            let x = traj.state_at(st.time()).unwrap().state_2d();
+            let f = st.filtered().combined().unwrap();
+            let se = |g: &Gaussian<4>| (g.mean()[0] - x[0]).powi(2) + (g.mean()[2] - x[2]).powi(2);
+            a[0] += s.combined.mahalanobis_sq(&x);
+            a[1] += f.mahalanobis_sq(&x);
+            a[2] += se(&s.combined);
+            a[3] += se(&f);
+            a[4] = st.time();
+            let sum: f64 = s.mode_probabilities.iter().sum();
+            assert!(
+                (sum - 1.0).abs() < 1e-9,
+                "smoothed mode probabilities sum to {sum}"
+            );
+        }
+    }
+    let nr = runs as f64;
+    // RMS position error over t ≥ 25 % of the track (the scenario's warm-up rule).
+    let (t0, t1) = (acc[0][4], acc[acc.len() - 1][4]);
+    let tail: Vec<&[f64; 5]> = acc
+        .iter()
+        .filter(|a| a[4] >= t0 + 0.25 * (t1 - t0))
+        .collect();
+    let rms = |i: usize| (tail.iter().map(|a| a[i]).sum::<f64>() / (nr * tail.len() as f64)).sqrt();
+    let (rms_s, rms_f) = (rms(2), rms(3));
+    let ratio = rms_s / rms_f;
+    // Per-step ANEES against the two-sided 99 % interval of χ²(4 · runs) / runs.
+    let band = anees_interval(4, runs as usize, 0.99).unwrap();
+    let inside = |i: usize| {
+        acc.iter().filter(|a| band.contains(a[i] / nr)).count() as f64 / acc.len() as f64
+    };
+    let mean = |i: usize| acc.iter().map(|a| a[i] / nr).sum::<f64>() / acc.len() as f64;
+    eprintln!(
+        "gimpo, {weights:?} ({runs} runs, {} steps): RMS position error smoothed {rms_s:.2} m, filtered {rms_f:.2} m, ratio {ratio:.3}; \
+         ANEES mean smoothed {:.2}, filtered {:.2}; steps inside the 99 % band [{:.2}, {:.2}]: smoothed {:.0} %, filtered {:.0} %",
+        acc.len(),
+        mean(0),
+        mean(1),
+        band.lower,
+        band.upper,
+        100.0 * inside(0),
+        100.0 * inside(1),
+    );
+    ratio
+}
+
+#[test]
+fn smoothed_imm_on_the_gimpo_trajectory() {
+    let ec = gimpo_campaign(PairWeights::ExpectationCorrection);
+    let kim = gimpo_campaign(PairWeights::Kim);
+    eprintln!(
+        "smoothed / filtered RMS position error: expectation correction {ec:.3}, Kim {kim:.3}"
+    );
+    // What holds (measured 0.952 for expectation correction, 4.12 for Kim's weights): the
+    // smoothed error is below the filtered one. The issue's goal (≤ 0.6) is NOT met, and
+    // the smoothed ANEES (7.2) is NOT inside its band; both are reported, not asserted
+    // (docs/smoothing.md).
+    assert!(ec < 1.0, "smoothed / filtered RMS {ec}");
+    assert!(ec < kim, "expectation correction {ec} vs Kim {kim}");
+}
+
+#[test]
+fn bad_sequences_get_errors_naming_the_step() {
+    let imm = paper_imm();
+    let pos = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 100.0).unwrap();
+    let g = Gaussian::new(Vector::<4>::zeros(), Matrix::<4, 4>::identity() * 1e4).unwrap();
+    let start = ImmEstimate::from_common(g, [1.0 / 3.0; 3]).unwrap();
+    let mut track = ImmTrack::new(*imm.markov(), 0.0, start).unwrap();
+    track
+        .step(&imm, 5.0, &pos, &Vector::<2>::new(450.0, 0.0))
+        .unwrap();
+    track
+        .step(&imm, 10.0, &pos, &Vector::<2>::new(900.0, 0.0))
+        .unwrap();
+    // Time going backwards at step 3.
+    let err = track
+        .step(&imm, 7.0, &pos, &Vector::<2>::new(1.0, 0.0))
+        .unwrap_err();
+    assert_eq!(
+        err,
+        ImmSmoothError::Sequence(SmoothError::TimeNotIncreasing {
+            step: 3,
+            prev: 10.0,
+            now: 7.0
+        })
+    );
+    assert_eq!(track.smooth().unwrap_err(), err);
+    assert!(err.to_string().contains("step 3"), "{err}");
+    // A failed IMM step (a NaN plot) at step 3 of a fresh track.
+    let mut track = ImmTrack::new(*imm.markov(), 0.0, start).unwrap();
+    track
+        .step(&imm, 5.0, &pos, &Vector::<2>::new(450.0, 0.0))
+        .unwrap();
+    track
+        .step(&imm, 10.0, &pos, &Vector::<2>::new(900.0, 0.0))
+        .unwrap();
+    let err = track
+        .step(&imm, 15.0, &pos, &Vector::<2>::new(f64::NAN, 0.0))
+        .unwrap_err();
+    assert!(
+        matches!(err, ImmSmoothError::ForwardFailed { step: 3, .. }),
+        "{err}"
+    );
+    assert_eq!(track.smooth().unwrap_err(), err);
+    assert_eq!(track.steps().len(), 3);
+    // An empty sequence.
+    assert_eq!(
+        argus_imm::imm_smooth::<4, 3>(imm.markov(), PairWeights::Kim, &[]).unwrap_err(),
+        ImmSmoothError::Sequence(SmoothError::Empty)
+    );
+}
