@@ -124,6 +124,25 @@ impl<const N: usize> Gaussian<N> {
         Ok(Self { mean, cov })
     }
 
+    /// [`Gaussian::mixture`] of a number of parts known at run time (e.g. a PDA update's
+    /// prediction and per-plot posteriors), with the same arithmetic.
+    ///
+    /// # Errors
+    /// As [`Gaussian::mixture`], and [`MathError::OutOfDomain`] when `weights` and `parts`
+    /// differ in length.
+    pub fn mixture_of(weights: &[f64], parts: &[Self]) -> Result<Self, MathError> {
+        if weights.len() != parts.len() {
+            return Err(MathError::OutOfDomain {
+                what: "mixture weights",
+                #[allow(clippy::cast_precision_loss)]
+                value: weights.len() as f64,
+                domain: "one per part",
+            });
+        }
+        let (mean, cov) = mixture_moments(weights, parts)?;
+        Ok(Self { mean, cov })
+    }
+
     /// The mean.
     #[must_use]
     pub fn mean(&self) -> &Vector<N> {
@@ -201,11 +220,12 @@ fn check_lower_triangle_exact<const N: usize>(cov: &Matrix<N, N>) -> Result<(), 
     }
 }
 
-/// The moments of [`Gaussian::mixture`].
+/// The moments of [`Gaussian::mixture`] and [`Gaussian::mixture_of`] (one weight per part;
+/// inlined, so a fixed-size caller's loops have constant bounds).
 #[inline(always)]
-fn mixture_moments<const N: usize, const K: usize>(
-    weights: &[f64; K],
-    parts: &[Gaussian<N>; K],
+fn mixture_moments<const N: usize>(
+    weights: &[f64],
+    parts: &[Gaussian<N>],
 ) -> Result<(Vector<N>, Matrix<N, N>), MathError> {
     if !all_finite(weights) || !weights.iter().any(|&w| w > 0.0) {
         return Err(MathError::OutOfDomain {
@@ -335,6 +355,27 @@ mod tests {
             proptest::prop_assert_eq!(*g.cov(), g.cov().transpose());
             proptest::prop_assert!(is_positive_definite(g.cov()));
         }
+    }
+
+    #[test]
+    fn mixture_of_equals_mixture_bit_for_bit_and_checks_lengths() {
+        // Same arithmetic through the slice entry: exact equality.
+        let a = Gaussian::new(
+            Vector::<2>::new(1.0, -2.0),
+            Matrix::<2, 2>::new(2.0, 0.3, 0.3, 1.0),
+        )
+        .unwrap();
+        let b = Gaussian::new(
+            Vector::<2>::new(-0.5, 4.0),
+            Matrix::<2, 2>::new(1.0, -0.2, -0.2, 3.0),
+        )
+        .unwrap();
+        let w = [0.3, 0.7];
+        assert_eq!(
+            Gaussian::mixture_of(&w, &[a, b]).unwrap(),
+            Gaussian::mixture(&w, &[a, b]).unwrap()
+        );
+        assert!(Gaussian::mixture_of(&w, &[a]).is_err());
     }
 
     #[test]

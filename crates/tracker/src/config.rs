@@ -1,5 +1,6 @@
 //! Tracker configuration, validated once by [`crate::Tracker::new`].
 
+use crate::field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
 use crate::{SensorId, TrackerError};
 
 /// Everything the tracker needs to know. Build it with [`TrackerConfig::new`] (the
@@ -106,13 +107,20 @@ impl SensorConfig {
         };
         for v in self.position {
             if !v.is_finite() {
-                return bad("sensors.position", v, "must be finite");
+                return bad(
+                    ConfigField::Sensor(SensorField::Position),
+                    v,
+                    "must be finite",
+                );
             }
         }
         if let Some(n) = &self.polar_noise {
             for (field, v) in [
-                ("sensors.polar_noise.sigma_range", n.sigma_range),
-                ("sensors.polar_noise.sigma_azimuth", n.sigma_azimuth),
+                (ConfigField::Sensor(SensorField::SigmaRange), n.sigma_range),
+                (
+                    ConfigField::Sensor(SensorField::SigmaAzimuth),
+                    n.sigma_azimuth,
+                ),
             ] {
                 if !(v.is_finite() && v > 0.0) {
                     return bad(field, v, "must be finite and positive");
@@ -176,7 +184,7 @@ pub enum EstimatorConfig {
         p_stay: f64,
     },
     /// Seed 000's multi-IMM measurement-noise estimator ([`argus_imm::MultiImm`]) per
-    /// track: [`MULTI_IMM_HYPOTHESES`] IMMs (each the two-mode CV IMM of
+    /// track: [`crate::MULTI_IMM_HYPOTHESES`] IMMs (each the two-mode CV IMM of
     /// [`EstimatorConfig::ImmCv2`]) assume the variances `(1 + (m − 2) p) σ²_ref`
     /// (eq 14, [`argus_imm::NoiseGrid::common`]); each polar plot updates all of them
     /// and moves the track's reference `σ²_ref` (eq 13), which starts at the configured
@@ -198,9 +206,6 @@ pub enum EstimatorConfig {
         clip: Option<f64>,
     },
 }
-
-/// Number of noise hypotheses `K` of [`EstimatorConfig::MultiImm`] (seed 000: 5).
-pub const MULTI_IMM_HYPOTHESES: usize = 5;
 
 /// Track-score management: each track carries the log-likelihood ratio `L` of "target"
 /// against "false track", tested sequentially (Wald's SPRT).
@@ -262,20 +267,36 @@ impl ScoreConfig {
         };
         let pd = self.p_detection;
         if !(pd.is_finite() && pd > 0.0 && pd <= 1.0) {
-            return bad("score.p_detection", pd, "must lie in (0, 1]");
+            return bad(
+                ConfigField::Score(ScoreField::PDetection),
+                pd,
+                "must lie in (0, 1]",
+            );
         }
         for (field, v) in [
-            ("score.clutter_density", self.clutter_density),
-            ("score.new_target_density", self.new_target_density),
-            ("score.delete_drop", self.delete_drop),
+            (
+                ConfigField::Score(ScoreField::ClutterDensity),
+                self.clutter_density,
+            ),
+            (
+                ConfigField::Score(ScoreField::NewTargetDensity),
+                self.new_target_density,
+            ),
+            (ConfigField::Score(ScoreField::DeleteDrop), self.delete_drop),
         ] {
             if !(v.is_finite() && v > 0.0) {
                 return bad(field, v, "must be finite and positive");
             }
         }
         for (field, v) in [
-            ("score.false_confirm", self.false_confirm),
-            ("score.missed_confirm", self.missed_confirm),
+            (
+                ConfigField::Score(ScoreField::FalseConfirm),
+                self.false_confirm,
+            ),
+            (
+                ConfigField::Score(ScoreField::MissedConfirm),
+                self.missed_confirm,
+            ),
         ] {
             if !(v.is_finite() && v > 0.0 && v < 0.5) {
                 return bad(field, v, "must lie in (0, 0.5)");
@@ -321,23 +342,26 @@ impl TrackerConfig {
             })
         };
         if self.sensors.is_empty() {
-            return bad("sensors", 0.0, "at least one sensor is needed");
+            return bad(ConfigField::Sensors, 0.0, "at least one sensor is needed");
         }
         for (i, s) in self.sensors.iter().enumerate() {
             s.validate()?;
             if self.sensors[..i].iter().any(|o| o.id == s.id) {
                 return bad(
-                    "sensors.id",
+                    ConfigField::Sensor(SensorField::Id),
                     f64::from(s.id.0),
                     "sensor ids must be distinct",
                 );
             }
         }
         let positive = [
-            ("max_speed", self.max_speed),
-            ("max_initiation_interval", self.max_initiation_interval),
-            ("max_position_sigma", self.max_position_sigma),
-            ("grid_cell", self.grid_cell),
+            (ConfigField::MaxSpeed, self.max_speed),
+            (
+                ConfigField::MaxInitiationInterval,
+                self.max_initiation_interval,
+            ),
+            (ConfigField::MaxPositionSigma, self.max_position_sigma),
+            (ConfigField::GridCell, self.grid_cell),
         ];
         for (field, v) in positive {
             if !(v.is_finite() && v > 0.0) {
@@ -345,8 +369,8 @@ impl TrackerConfig {
             }
         }
         for (field, v) in [
-            ("sigma_a", self.sigma_a),
-            ("velocity_gate_sigmas", self.velocity_gate_sigmas),
+            (ConfigField::SigmaA, self.sigma_a),
+            (ConfigField::VelocityGateSigmas, self.velocity_gate_sigmas),
         ] {
             if !(v.is_finite() && v >= 0.0) {
                 return bad(field, v, "must be finite and non-negative");
@@ -354,20 +378,24 @@ impl TrackerConfig {
         }
         let p = self.gate_probability;
         if !(p.is_finite() && p > 0.0 && p < 1.0) {
-            return bad("gate_probability", p, "must lie in (0, 1)");
+            return bad(ConfigField::GateProbability, p, "must lie in (0, 1)");
         }
         if !(2..=32).contains(&self.confirm_n) {
-            return bad("confirm_n", f64::from(self.confirm_n), "must lie in 2..=32");
+            return bad(
+                ConfigField::ConfirmN,
+                f64::from(self.confirm_n),
+                "must lie in 2..=32",
+            );
         }
         if !(2..=self.confirm_n).contains(&self.confirm_m) {
             return bad(
-                "confirm_m",
+                ConfigField::ConfirmM,
                 f64::from(self.confirm_m),
                 "must lie in 2..=confirm_n",
             );
         }
         if self.max_misses == 0 {
-            return bad("max_misses", 0.0, "must be at least 1");
+            return bad(ConfigField::MaxMisses, 0.0, "must be at least 1");
         }
         if let Some(score) = &self.score {
             score.validate()?;
@@ -388,7 +416,7 @@ impl TrackerConfig {
             } => {
                 if !(grid_spacing.is_finite() && grid_spacing > 0.0 && grid_spacing < 0.5) {
                     return bad(
-                        "estimator.grid_spacing",
+                        ConfigField::Estimator(EstimatorField::GridSpacing),
                         grid_spacing,
                         "must lie in (0, 0.5)",
                     );
@@ -396,11 +424,15 @@ impl TrackerConfig {
                 if let Some(c) = clip
                     && !(c.is_finite() && c > 0.0 && c < 1.0)
                 {
-                    return bad("estimator.clip", c, "must lie in (0, 1)");
+                    return bad(
+                        ConfigField::Estimator(EstimatorField::Clip),
+                        c,
+                        "must lie in (0, 1)",
+                    );
                 }
                 if let Some(s) = self.sensors.iter().find(|s| s.polar_noise.is_none()) {
                     return bad(
-                        "sensors.polar_noise",
+                        ConfigField::Sensor(SensorField::PolarNoise),
                         f64::from(s.id.0),
                         "the multi-IMM needs every sensor's polar noise",
                     );
@@ -410,15 +442,25 @@ impl TrackerConfig {
         };
         if let Some((sigma_a_low, sigma_a_high, p_stay)) = motion {
             for (field, v) in [
-                ("estimator.sigma_a_low", sigma_a_low),
-                ("estimator.sigma_a_high", sigma_a_high),
+                (
+                    ConfigField::Estimator(EstimatorField::SigmaALow),
+                    sigma_a_low,
+                ),
+                (
+                    ConfigField::Estimator(EstimatorField::SigmaAHigh),
+                    sigma_a_high,
+                ),
             ] {
                 if !(v.is_finite() && v >= 0.0) {
                     return bad(field, v, "must be finite and non-negative");
                 }
             }
             if !(p_stay.is_finite() && p_stay > 0.0 && p_stay < 1.0) {
-                return bad("estimator.p_stay", p_stay, "must lie in (0, 1)");
+                return bad(
+                    ConfigField::Estimator(EstimatorField::PStay),
+                    p_stay,
+                    "must lie in (0, 1)",
+                );
             }
         }
         if let AssociationConfig::Jpda {
@@ -428,21 +470,29 @@ impl TrackerConfig {
         } = self.association
         {
             if !(p_detection.is_finite() && p_detection > 0.0 && p_detection <= 1.0) {
-                return bad("association.p_detection", p_detection, "must lie in (0, 1]");
+                return bad(
+                    ConfigField::Association(AssociationField::PDetection),
+                    p_detection,
+                    "must lie in (0, 1]",
+                );
             }
             if !(clutter_density.is_finite() && clutter_density > 0.0) {
                 return bad(
-                    "association.clutter_density",
+                    ConfigField::Association(AssociationField::ClutterDensity),
                     clutter_density,
                     "must be finite and positive",
                 );
             }
             if max_exact_events == 0 {
-                return bad("association.max_exact_events", 0.0, "must be at least 1");
+                return bad(
+                    ConfigField::Association(AssociationField::MaxExactEvents),
+                    0.0,
+                    "must be at least 1",
+                );
             }
             if matches!(self.estimator, EstimatorConfig::MultiImm { .. }) {
                 return bad(
-                    "association",
+                    ConfigField::Association(AssociationField::Kind),
                     0.0,
                     "JPDA with the multi-IMM estimator is not built",
                 );

@@ -6,6 +6,7 @@ use argus_motion_models::MotionError;
 use argus_sensors::SensorError;
 
 use crate::SensorId;
+use crate::field::ConfigField;
 
 /// What went wrong. Input errors name the plot (its index in the slice given, its
 /// time and sensor) or the configuration field; they are detected before any track
@@ -17,7 +18,7 @@ pub enum TrackerError {
     #[error("tracker config {field} = {value} is invalid: {reason}")]
     InvalidConfig {
         /// The field.
-        field: &'static str,
+        field: ConfigField,
         /// Its value.
         value: f64,
         /// Why it is rejected.

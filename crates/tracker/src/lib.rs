@@ -120,17 +120,23 @@ mod assign;
 mod config;
 mod error;
 mod estimator;
+mod field;
 mod grid;
+mod innovation;
 mod jpda;
+mod management;
+mod pda;
 mod plot;
+mod state;
 mod track;
 mod tracker;
 
 pub use config::{
-    AssociationConfig, EstimatorConfig, MULTI_IMM_HYPOTHESES, PolarNoise, ScoreConfig,
-    SensorConfig, TrackerConfig,
+    AssociationConfig, EstimatorConfig, PolarNoise, ScoreConfig, SensorConfig, TrackerConfig,
 };
 pub use error::TrackerError;
+pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
 pub use plot::{Plot, PlotMeasurement};
+pub use state::MULTI_IMM_HYPOTHESES;
 pub use track::{DeletionReason, SensorId, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};

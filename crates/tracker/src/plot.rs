@@ -6,6 +6,7 @@ use argus_sensors::{
     CartesianPosition, ConversionMethod, Polar2D, RadarNoise, Sigmas, convert_polar,
 };
 
+use crate::field::{ConfigField, SensorField};
 use crate::{SensorConfig, SensorId, TrackerError};
 
 /// What a plot measured.
@@ -113,7 +114,7 @@ impl SensorModel {
             None => None,
             Some(n) => {
                 let bad = |reason| TrackerError::InvalidConfig {
-                    field: "sensors.polar_noise",
+                    field: ConfigField::Sensor(SensorField::PolarNoise),
                     value: n.sigma_azimuth,
                     reason,
                 };
@@ -237,7 +238,7 @@ impl SensorModel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::estimator::polar_half;
+    use crate::innovation::polar_half;
     use argus_core_math::Gaussian;
     use argus_filters::{Ekf, GaussianFilter};
     use argus_motion_models::Cv2D;

@@ -1,12 +1,9 @@
 //! Tracks, their ids and statuses.
 
 use argus_core_math::Gaussian;
-use argus_imm::{ImmEstimate, MultiImmEstimate, NoiseVariances};
+use argus_imm::NoiseVariances;
 
-use crate::config::MULTI_IMM_HYPOTHESES;
-
-/// A track's multi-IMM state (boxed in the track: it is large).
-pub(crate) type MultiState = MultiImmEstimate<4, 2, MULTI_IMM_HYPOTHESES>;
+use crate::state::TrackState;
 
 /// A track's id: numbered from 0 in order of initiation and never reused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -59,8 +56,7 @@ pub struct Track {
     pub(crate) last_hit: bool,
     pub(crate) score: f64,
     pub(crate) peak_score: f64,
-    pub(crate) imm: Option<ImmEstimate<4, 2>>,
-    pub(crate) multi: Option<Box<MultiState>>,
+    pub(crate) state: TrackState,
 }
 
 impl Track {
@@ -129,11 +125,7 @@ impl Track {
     /// multi-IMM (for the latter `Σₘ νᵐ μⱼᵐ`).
     #[must_use]
     pub fn mode_probabilities(&self) -> Option<[f64; 2]> {
-        match (&self.imm, &self.multi) {
-            (Some(imm), _) => Some(imm.mode_probabilities()),
-            (None, Some(m)) => Some(m.mode_probabilities()),
-            (None, None) => None,
-        }
+        self.state.mode_probabilities()
     }
 
     /// The multi-IMM's current measurement-noise estimate `(σ_r², σ_θ²)` (its reference
@@ -141,7 +133,7 @@ impl Track {
     /// [`crate::EstimatorConfig::MultiImm`].
     #[must_use]
     pub fn noise_estimate(&self) -> Option<NoiseVariances> {
-        self.multi.as_ref().map(|m| *m.reference())
+        self.state.noise_estimate()
     }
 
     /// Its track score (log-likelihood ratio), kept when

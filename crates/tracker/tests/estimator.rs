@@ -150,7 +150,7 @@ fn bad_estimator_config_names_the_field() {
     assert!(matches!(
         Tracker::new(cfg),
         Err(argus_tracker::TrackerError::InvalidConfig {
-            field: "estimator.p_stay",
+            field: argus_tracker::ConfigField::Estimator(argus_tracker::EstimatorField::PStay),
             ..
         })
     ));

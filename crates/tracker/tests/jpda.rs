@@ -125,7 +125,7 @@ fn jpda_with_the_multi_imm_is_refused() {
     assert!(matches!(
         Tracker::new(cfg),
         Err(argus_tracker::TrackerError::InvalidConfig {
-            field: "association",
+            field: argus_tracker::ConfigField::Association(argus_tracker::AssociationField::Kind),
             ..
         })
     ));

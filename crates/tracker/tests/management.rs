@@ -361,7 +361,7 @@ fn bad_input_is_rejected_with_its_place_and_changes_nothing() {
 #[test]
 fn bad_configs_name_the_field() {
     let field = |cfg: TrackerConfig| match Tracker::new(cfg) {
-        Err(TrackerError::InvalidConfig { field, .. }) => field,
+        Err(TrackerError::InvalidConfig { field, .. }) => field.key(),
         other => panic!("expected InvalidConfig, got {other:?}"),
     };
     let base = TrackerConfig::new(vec![S0]);

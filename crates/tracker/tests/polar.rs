@@ -219,7 +219,7 @@ fn bad_polar_plots_are_rejected_with_their_place_and_change_nothing() {
 #[test]
 fn bad_sensor_configs_name_the_field() {
     let field = |cfg: TrackerConfig| match Tracker::new(cfg) {
-        Err(TrackerError::InvalidConfig { field, .. }) => field,
+        Err(TrackerError::InvalidConfig { field, .. }) => field.key(),
         other => panic!("expected InvalidConfig, got {other:?}"),
     };
     let polar = |sr, sa| TrackerConfig::new([SensorConfig::polar(S0, SENSOR, sr, sa)]);

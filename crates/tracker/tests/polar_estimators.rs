@@ -257,7 +257,7 @@ fn multi_imm_configs_and_plots_are_checked() {
         ..TrackerConfig::new([SensorConfig::polar(S0, SENSOR, 40.0, 2e-3)])
     };
     let field = |cfg: TrackerConfig| match Tracker::new(cfg) {
-        Err(TrackerError::InvalidConfig { field, .. }) => field,
+        Err(TrackerError::InvalidConfig { field, .. }) => field.key(),
         other => panic!("expected InvalidConfig, got {other:?}"),
     };
     let with = |e: EstimatorConfig| TrackerConfig {

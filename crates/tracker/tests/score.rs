@@ -166,7 +166,7 @@ fn bad_score_config_names_the_field() {
     assert!(matches!(
         Tracker::new(cfg),
         Err(argus_tracker::TrackerError::InvalidConfig {
-            field: "score.false_confirm",
+            field: argus_tracker::ConfigField::Score(argus_tracker::ScoreField::FalseConfirm),
             ..
         })
     ));

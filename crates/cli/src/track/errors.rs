@@ -1,34 +1,26 @@
-//! The map from the tracker's own checks ([`argus_tracker::TrackerConfig::validate`]) back to
-//! the key of the file that holds the value.
+//! The map from the tracker's own checks ([`argus_tracker::TrackerConfig::validate`]),
+//! which name a typed [`argus_tracker::ConfigField`], back to the key and line of the file
+//! that holds the value: one match on the field, no string names.
 
 use std::ops::Range;
 
-use argus_tracker::TrackerError;
+use argus_tracker::{
+    AssociationField, ConfigField as F, EstimatorField, ScoreField, SensorField, TrackerError,
+};
 use toml::Spanned;
 
 use super::schema::{File, ScoreTable, Source, TrackerTable};
 use crate::error::CliError;
 
-/// A `[[sensor]]` key the tracker checks again.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum SensorKey {
-    Position,
-    SigmaRange,
-    SigmaAzimuth,
-    /// A sensor without polar noise (the multi-IMM needs it): named by its id.
-    NoPolarNoise,
-    Id,
-}
-
-impl SensorKey {
-    /// The key as written in `[[sensor]]`.
-    fn name(self) -> &'static str {
-        match self {
-            Self::Position => "position",
-            Self::SigmaRange | Self::NoPolarNoise => "sigma_range",
-            Self::SigmaAzimuth => "sigma_azimuth_deg",
-            Self::Id => "id",
-        }
+/// The `[[sensor]]` key of a sensor field the tracker checks again (a missing polar
+/// noise is named by `sigma_range`; a field this map does not know by `id`).
+fn sensor_key(f: SensorField) -> &'static str {
+    match f {
+        SensorField::Position => "position",
+        SensorField::SigmaRange | SensorField::PolarNoise => "sigma_range",
+        SensorField::SigmaAzimuth => "sigma_azimuth_deg",
+        SensorField::Id => "id",
+        _ => "id",
     }
 }
 
@@ -38,13 +30,13 @@ enum Place {
     /// written and its default was refused: the `[tracker]` line).
     Key(&'static str, Option<Range<usize>>),
     /// A `[[sensor]]` value, found by the value refused.
-    Sensor(SensorKey),
+    Sensor(SensorField),
     /// No `[[sensor]]` at all.
     NoSensor,
 }
 
-/// Maps a [`TrackerError::InvalidConfig`] of the tracker's validation to the key of `file`
-/// that holds the value (the `[tracker]` line for a default); any other error names the
+/// Maps a [`TrackerError::InvalidConfig`] of the tracker's validation, by its typed
+/// [`argus_tracker::ConfigField`], to the key of `file` that holds the value (the `[tracker]` line for a default); any other error names the
 /// `[tracker]` table.
 pub(super) fn config_error(
     src: Source<'_>,
@@ -67,65 +59,79 @@ pub(super) fn config_error(
         t.score.as_ref().map(|s| f(s.get_ref()).span())
     };
     let place = match *field {
-        "gate_probability" => Place::Key("tracker.gate_probability", span(&t.gate_probability)),
-        "max_speed" => Place::Key("tracker.max_speed", span(&t.max_speed)),
-        "velocity_gate_sigmas" => Place::Key(
+        F::GateProbability => Place::Key("tracker.gate_probability", span(&t.gate_probability)),
+        F::MaxSpeed => Place::Key("tracker.max_speed", span(&t.max_speed)),
+        F::VelocityGateSigmas => Place::Key(
             "tracker.velocity_gate_sigmas",
             span(&t.velocity_gate_sigmas),
         ),
-        "max_initiation_interval" => Place::Key(
+        F::MaxInitiationInterval => Place::Key(
             "tracker.max_initiation_interval",
             span(&t.max_initiation_interval),
         ),
-        "confirm_m" => Place::Key("tracker.confirm_m", span(&t.confirm_m)),
-        "confirm_n" => Place::Key("tracker.confirm_n", span(&t.confirm_n)),
-        "max_misses" => Place::Key("tracker.max_misses", span(&t.max_misses)),
-        "max_position_sigma" => {
+        F::ConfirmM => Place::Key("tracker.confirm_m", span(&t.confirm_m)),
+        F::ConfirmN => Place::Key("tracker.confirm_n", span(&t.confirm_n)),
+        F::MaxMisses => Place::Key("tracker.max_misses", span(&t.max_misses)),
+        F::MaxPositionSigma => {
             Place::Key("tracker.max_position_sigma", span(&t.max_position_sigma))
         }
-        "grid_cell" => Place::Key("tracker.grid_cell", span(&t.grid_cell)),
-        "association" => Place::Key("tracker.association", span(&t.association)),
-        "association.p_detection" => Place::Key("tracker.p_detection", span(&t.p_detection)),
-        "association.clutter_density" => {
-            Place::Key("tracker.clutter_density", span(&t.clutter_density))
-        }
-        "association.max_exact_events" => {
-            Place::Key("tracker.max_exact_events", span(&t.max_exact_events))
-        }
-        "score.p_detection" => Place::Key("tracker.score.p_detection", score(|s| &s.p_detection)),
-        "score.clutter_density" => Place::Key(
-            "tracker.score.clutter_density",
-            score(|s| &s.clutter_density),
-        ),
-        "score.new_target_density" => Place::Key(
-            "tracker.score.new_target_density",
-            score(|s| &s.new_target_density),
-        ),
-        "score.false_confirm" => {
-            Place::Key("tracker.score.false_confirm", score(|s| &s.false_confirm))
-        }
-        "score.missed_confirm" => {
-            Place::Key("tracker.score.missed_confirm", score(|s| &s.missed_confirm))
-        }
-        "score.delete_drop" => Place::Key("tracker.score.delete_drop", score(|s| &s.delete_drop)),
-        "sigma_a" => Place::Key("estimator.sigma_a", est.sigma_a.as_ref().map(Spanned::span)),
-        "estimator.sigma_a_low" | "estimator.sigma_a_high" => {
-            Place::Key("estimator.models", est.models.as_ref().map(Spanned::span))
-        }
-        "estimator.p_stay" => {
-            Place::Key("estimator.markov", est.markov.as_ref().map(Spanned::span))
-        }
-        "estimator.grid_spacing" => Place::Key("estimator.p", est.p.as_ref().map(Spanned::span)),
-        "estimator.clip" => Place::Key("estimator.clip", est.clip.as_ref().map(Spanned::span)),
-        "sensors.position" => Place::Sensor(SensorKey::Position),
-        "sensors.polar_noise.sigma_range" => Place::Sensor(SensorKey::SigmaRange),
-        "sensors.polar_noise.sigma_azimuth" => Place::Sensor(SensorKey::SigmaAzimuth),
-        "sensors.polar_noise" => Place::Sensor(SensorKey::NoPolarNoise),
-        "sensors.id" => Place::Sensor(SensorKey::Id),
-        "sensors" => Place::NoSensor,
-        // A field this map does not know: named as the tracker names it, at the
-        // `[tracker]` line.
-        other => Place::Key(other, None),
+        F::GridCell => Place::Key("tracker.grid_cell", span(&t.grid_cell)),
+        F::Association(a) => match a {
+            AssociationField::Kind => Place::Key("tracker.association", span(&t.association)),
+            AssociationField::PDetection => Place::Key("tracker.p_detection", span(&t.p_detection)),
+            AssociationField::ClutterDensity => {
+                Place::Key("tracker.clutter_density", span(&t.clutter_density))
+            }
+            AssociationField::MaxExactEvents => {
+                Place::Key("tracker.max_exact_events", span(&t.max_exact_events))
+            }
+            _ => Place::Key(field.key(), None),
+        },
+        F::Score(f) => match f {
+            ScoreField::PDetection => {
+                Place::Key("tracker.score.p_detection", score(|s| &s.p_detection))
+            }
+            ScoreField::ClutterDensity => Place::Key(
+                "tracker.score.clutter_density",
+                score(|s| &s.clutter_density),
+            ),
+            ScoreField::NewTargetDensity => Place::Key(
+                "tracker.score.new_target_density",
+                score(|s| &s.new_target_density),
+            ),
+            ScoreField::FalseConfirm => {
+                Place::Key("tracker.score.false_confirm", score(|s| &s.false_confirm))
+            }
+            ScoreField::MissedConfirm => {
+                Place::Key("tracker.score.missed_confirm", score(|s| &s.missed_confirm))
+            }
+            ScoreField::DeleteDrop => {
+                Place::Key("tracker.score.delete_drop", score(|s| &s.delete_drop))
+            }
+            _ => Place::Key(field.key(), None),
+        },
+        F::SigmaA => Place::Key("estimator.sigma_a", est.sigma_a.as_ref().map(Spanned::span)),
+        F::Estimator(f) => match f {
+            EstimatorField::Kind => Place::Key("estimator.kind", Some(est.kind.span())),
+            EstimatorField::SigmaALow | EstimatorField::SigmaAHigh => {
+                Place::Key("estimator.models", est.models.as_ref().map(Spanned::span))
+            }
+            EstimatorField::PStay => {
+                Place::Key("estimator.markov", est.markov.as_ref().map(Spanned::span))
+            }
+            EstimatorField::GridSpacing => {
+                Place::Key("estimator.p", est.p.as_ref().map(Spanned::span))
+            }
+            EstimatorField::Clip => {
+                Place::Key("estimator.clip", est.clip.as_ref().map(Spanned::span))
+            }
+            _ => Place::Key(field.key(), None),
+        },
+        F::Sensor(f) => Place::Sensor(f),
+        F::Sensors => Place::NoSensor,
+        // `ConfigField` is `#[non_exhaustive]`: a field added to the tracker after this
+        // map is named as the tracker names it, at the `[tracker]` line.
+        _ => Place::Key(field.key(), None),
     };
     match place {
         Place::Key(key, at) => {
@@ -138,7 +144,7 @@ pub(super) fn config_error(
             let at = at.unwrap_or_else(|| table.span());
             CliError::input(src.path, Some(src.line(&at)), Some(key), msg)
         }
-        Place::Sensor(key) => sensor_error(src, file, key, *value, reason),
+        Place::Sensor(f) => sensor_error(src, file, f, *value, reason),
         Place::NoSensor => src.missing("sensor", "the tracker needs at least one [[sensor]]"),
     }
 }
@@ -149,41 +155,43 @@ pub(super) fn config_error(
 fn sensor_error(
     src: Source<'_>,
     file: &File,
-    key: SensorKey,
+    field: SensorField,
     value: f64,
     reason: &str,
 ) -> CliError {
     let same = |v: f64| v.to_bits() == value.to_bits();
     let found = file.sensors.iter().find_map(|s| {
         let id = *s.id.get_ref();
-        let hit = match key {
-            SensorKey::Position => s
+        let hit = match field {
+            SensorField::Position => s
                 .position
                 .get_ref()
                 .iter()
                 .any(|v| same(*v))
                 .then(|| s.position.span()),
-            SensorKey::SigmaRange => s
+            SensorField::SigmaRange => s
                 .sigma_range
                 .as_ref()
                 .filter(|v| same(*v.get_ref()))
                 .map(Spanned::span),
-            SensorKey::SigmaAzimuth => s
+            SensorField::SigmaAzimuth => s
                 .sigma_azimuth_deg
                 .as_ref()
                 .filter(|v| same(v.get_ref().to_radians()))
                 .map(Spanned::span),
-            SensorKey::NoPolarNoise | SensorKey::Id => same(f64::from(id)).then(|| s.id.span()),
+            // A missing polar noise, a repeated id: the value is the sensor's id.
+            _ => same(f64::from(id)).then(|| s.id.span()),
         };
         hit.map(|span| (id, span))
     });
+    let key = sensor_key(field);
     match found {
         Some((id, span)) => CliError::input(
             src.path,
             Some(src.line(&span)),
-            Some(key.name()),
+            Some(key),
             format!("sensor {id}: {reason}"),
         ),
-        None => src.missing(key.name(), format!("{value}: {reason}")),
+        None => src.missing(key, format!("{value}: {reason}")),
     }
 }
