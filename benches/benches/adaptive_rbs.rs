@@ -7,7 +7,7 @@ use std::hint::black_box;
 
 use argus_adaptive::{
     AdaptiveDecoupledFilter, AdaptiveRConfig, AdaptiveState, ConvertedPlot, CoupledCvFilter,
-    DecoupledEstimate, DecoupledFilter, FrameHandling, REstimate, SphericalPlot, Warmup,
+    DecoupledEstimate, DecoupledFilter, FrameHandling, REstimate, Warmup, beacon_plot_of,
 };
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::GaussianFilter;
@@ -20,7 +20,7 @@ fn rbs_step(c: &mut Criterion) {
     let link = SnrNoise::link_for_range_sigma(149.9, 2.97, 3006.0).unwrap();
     let radar = SnrNoise::new(149.9, 2f64.to_radians(), 2f64.to_radians(), 1.6, link).unwrap();
     let truth = Vector::<3>::new(-3000.0, -100.0, 157.2);
-    let sph = SphericalPlot::from_cartesian(&truth).unwrap();
+    let sph = beacon_plot_of(&truth).unwrap();
     let plot = ConvertedPlot::from_spherical(&sph, &radar.sigmas_at_range(sph.range())).unwrap();
     let mean = Vector::<6>::new(-3003.5, 35.0, -100.0, 0.0, 157.0, -1.8);
     let block = Matrix::<2, 2>::new(4.0, 0.5, 0.5, 0.4);

@@ -4,13 +4,14 @@
 //! Targets (issue 4): IMM step ≤ 1 µs, multi-IMM step ≤ 5 µs on the project machine.
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
 
+use argus_sensors::PolarMeasurement;
 use std::hint::black_box;
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::Kf;
 use argus_imm::{
     AircraftRadar, AircraftTuning, EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate,
-    MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion, PolarPlot,
+    MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion,
     UnbiasedConversion, VariationalEstimate, VariationalNoiseImm,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
@@ -48,7 +49,7 @@ fn benches(c: &mut Criterion) {
     let var = NoiseVariances::from_sigmas(70.0, 0.08_f64.to_radians()).unwrap();
     // The target 5 s later, as a plot (noise-free; the cost does not depend on the noise).
     let (x, y) = (-60_000.0 + 450.0_f64, -20_000.0_f64);
-    let plot = PolarPlot::new(x.hypot(y), y.atan2(x)).unwrap();
+    let plot = PolarMeasurement::new(x.hypot(y), y.atan2(x)).unwrap();
     let mut g = c.benchmark_group("imm");
 
     let est = start();

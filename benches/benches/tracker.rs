@@ -48,15 +48,19 @@ fn scan(rng: &mut ChaCha8Rng, targets: &[(Vector<2>, Vector<2>)], t: f64, side: 
                 p0 + v * t + Vector::<2>::new(SIGMA * gauss(rng), SIGMA * gauss(rng)),
                 cov,
             )
+            .unwrap()
         })
         .collect();
     for _ in 0..targets.len() / 10 {
-        plots.push(Plot::cartesian(
-            t,
-            SensorId(0),
-            Vector::<2>::new(side * rng.random::<f64>(), side * rng.random::<f64>()),
-            cov,
-        ));
+        plots.push(
+            Plot::cartesian(
+                t,
+                SensorId(0),
+                Vector::<2>::new(side * rng.random::<f64>(), side * rng.random::<f64>()),
+                cov,
+            )
+            .unwrap(),
+        );
     }
     plots
 }

@@ -5,77 +5,61 @@
 //! [`LinkBudget`](argus_sensors::LinkBudget).
 
 use argus_core_math::{Matrix, Vector};
-use argus_sensors::{LinearMeasurementModel, MeasurementModel, Sigmas};
+use argus_sensors::{LinearMeasurementModel, MeasurementModel, Sigmas, SphericalMeasurement};
 
 use crate::error::{AdaptiveError, finite, positive};
 
 /// Tolerance on `|DᵀD − I|` for a frame to count as orthonormal.
 const ORTHONORMAL_TOL: f64 = 1e-9;
 
-/// One spherical plot of a radar at the origin: range (m), azimuth from +x
-/// counter-clockwise (rad) and elevation above the x–y plane (rad).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SphericalPlot {
+/// A radar-beacon plot as the decoupled filter takes it: a spherical measurement
+/// (the vocabulary's [`SphericalMeasurement`]) of a radar at the origin, with a range
+/// above zero and an elevation inside `(−π/2, π/2)` (where the aligned frame exists).
+///
+/// # Errors
+/// [`AdaptiveError::NonFinite`] for a NaN or infinite value,
+/// [`AdaptiveError::InvalidParameter`] for a non-positive range or an elevation outside
+/// `(−π/2, π/2)`.
+pub fn beacon_plot(
     range: f64,
     azimuth: f64,
     elevation: f64,
+) -> Result<SphericalMeasurement, AdaptiveError> {
+    positive(range, "plot range")?;
+    finite(azimuth, "plot azimuth")?;
+    finite(elevation, "plot elevation")?;
+    check_elevation(elevation)?;
+    Ok(SphericalMeasurement::new(range, azimuth, elevation)?)
 }
 
-impl SphericalPlot {
-    /// A validated plot.
-    ///
-    /// # Errors
-    /// [`AdaptiveError::NonFinite`] for a NaN or infinite value,
-    /// [`AdaptiveError::InvalidParameter`] for a non-positive range or an
-    /// elevation outside `(−π/2, π/2)`.
-    pub fn new(range: f64, azimuth: f64, elevation: f64) -> Result<Self, AdaptiveError> {
-        positive(range, "plot range")?;
-        finite(azimuth, "plot azimuth")?;
-        finite(elevation, "plot elevation")?;
-        if elevation.abs() >= std::f64::consts::FRAC_PI_2 {
-            return Err(AdaptiveError::InvalidParameter {
-                what: "plot elevation",
-                value: elevation,
-                reason: "must lie in (-pi/2, pi/2)",
-            });
-        }
-        Ok(Self {
-            range,
-            azimuth,
-            elevation,
-        })
-    }
+/// The noise-free plot of a Cartesian position `(x, y, z)` (inverse of eq 9).
+///
+/// # Errors
+/// As [`beacon_plot`]: a position at the origin or on the z axis is rejected.
+pub fn beacon_plot_of(p: &Vector<3>) -> Result<SphericalMeasurement, AdaptiveError> {
+    let ground = p[0].hypot(p[1]);
+    beacon_plot(p.norm(), p[1].atan2(p[0]), p[2].atan2(ground))
+}
 
-    /// The noise-free plot of a Cartesian position `(x, y, z)` (inverse of eq 9).
-    ///
-    /// # Errors
-    /// As [`SphericalPlot::new`]: a position at the origin or on the z axis is rejected.
-    pub fn from_cartesian(p: &Vector<3>) -> Result<Self, AdaptiveError> {
-        let ground = p[0].hypot(p[1]);
-        Self::new(p.norm(), p[1].atan2(p[0]), p[2].atan2(ground))
+fn check_elevation(elevation: f64) -> Result<(), AdaptiveError> {
+    if elevation.abs() >= std::f64::consts::FRAC_PI_2 {
+        return Err(AdaptiveError::InvalidParameter {
+            what: "plot elevation",
+            value: elevation,
+            reason: "must lie in (-pi/2, pi/2)",
+        });
     }
-
-    /// Range, m.
-    #[must_use]
-    pub fn range(&self) -> f64 {
-        self.range
-    }
-
-    /// Azimuth ψ, rad, from +x counter-clockwise.
-    #[must_use]
-    pub fn azimuth(&self) -> f64 {
-        self.azimuth
-    }
-
-    /// Elevation θ, rad.
-    #[must_use]
-    pub fn elevation(&self) -> f64 {
-        self.elevation
-    }
+    Ok(())
 }
 
 /// A plot converted to Cartesian `(x, y, z)` with its first-order covariance
 /// kept in the measurement-aligned frame.
+///
+/// Not the vocabulary's [`argus_sensors::CartesianMeasurement`]: the decoupled filter
+/// works in the aligned frame `D` and adapts the aligned variances one by one
+/// ([`ConvertedPlot::with_aligned_variances`]), so the covariance is kept factored as
+/// `D diag(v) Dᵀ` and formed only on demand ([`ConvertedPlot::cartesian_noise`],
+/// [`ConvertedPlot::measurement`]).
 ///
 /// Conversion (eq 9): `x = r cosψ cosθ, y = r sinψ cosθ, z = r sinθ`. The
 /// Jacobian `J = ∂(x,y,z)/∂(r,ψ,θ) = D diag(1, r cosθ, r)` where `D` is the
@@ -100,10 +84,16 @@ impl ConvertedPlot {
     ///
     /// # Errors
     /// [`AdaptiveError::NonFinite`] if the conversion overflows,
-    /// [`AdaptiveError::InvalidParameter`] when a standard deviation is zero (the
-    /// aligned variances must be positive).
-    pub fn from_spherical(plot: &SphericalPlot, sigmas: &Sigmas) -> Result<Self, AdaptiveError> {
-        let (r, psi, theta) = (plot.range, plot.azimuth, plot.elevation);
+    /// [`AdaptiveError::InvalidParameter`] for a zero range, an elevation outside
+    /// `(−π/2, π/2)` (see [`beacon_plot`]) or a zero standard deviation (the aligned
+    /// variances must be positive).
+    pub fn from_spherical(
+        plot: &SphericalMeasurement,
+        sigmas: &Sigmas,
+    ) -> Result<Self, AdaptiveError> {
+        let (r, psi, theta) = (plot.range(), plot.azimuth(), plot.elevation());
+        positive(r, "plot range")?;
+        check_elevation(theta)?;
         let (sp, cp) = psi.sin_cos();
         let (st, ct) = theta.sin_cos();
         let position = Vector::<3>::new(r * cp * ct, r * sp * ct, r * st);
@@ -173,6 +163,18 @@ impl ConvertedPlot {
     #[must_use]
     pub fn aligned_variances(&self) -> &Vector<3> {
         &self.aligned_variances
+    }
+
+    /// The position and `R_c` as the vocabulary's Cartesian measurement.
+    ///
+    /// # Errors
+    /// [`AdaptiveError::Sensor`] when the formed `R_c` is not numerically positive
+    /// definite (aligned variances many orders of magnitude apart).
+    pub fn measurement(&self) -> Result<argus_sensors::CartesianMeasurement<3>, AdaptiveError> {
+        Ok(argus_sensors::CartesianMeasurement::new(
+            self.position,
+            self.cartesian_noise(),
+        )?)
     }
 
     /// The Cartesian noise covariance `R_c = D diag(aligned variances) Dᵀ`.
@@ -245,8 +247,7 @@ mod tests {
         // (step 1e-6 in each coordinate, truncation error O(h²)).
         let (r, psi, theta) = (3005.8, 3.17, 0.052);
         let s = Sigmas::new(2.97, 4.3e-4, 4.3e-4).unwrap();
-        let plot =
-            ConvertedPlot::from_spherical(&SphericalPlot::new(r, psi, theta).unwrap(), &s).unwrap();
+        let plot = ConvertedPlot::from_spherical(&beacon_plot(r, psi, theta).unwrap(), &s).unwrap();
         let h = 1e-6;
         let mut j = Matrix::<3, 3>::zeros();
         j.set_column(
@@ -279,7 +280,7 @@ mod tests {
         // det = +1 (right-handed): exact identity of the unit vectors, to round-off.
         assert!((d.determinant() - 1.0).abs() < 1e-12);
         let p = Vector::<3>::new(-3000.0, -100.0, 157.2);
-        let sp = SphericalPlot::from_cartesian(&p).unwrap();
+        let sp = beacon_plot_of(&p).unwrap();
         assert!((convert(sp.range(), sp.azimuth(), sp.elevation()) - p).amax() < 1e-9);
     }
 
@@ -302,7 +303,7 @@ mod tests {
             let s = noise.sigmas_at_snr(snr).unwrap();
             assert!(rel(s.range(), sr) < 1e-14 && rel(s.azimuth(), sa) < 1e-14);
             assert!(rel(s.elevation(), sa) < 1e-14);
-            let plot = SphericalPlot::new(range, 3.13, 0.05).unwrap();
+            let plot = beacon_plot(range, 3.13, 0.05).unwrap();
             let c = ConvertedPlot::from_spherical(&plot, &s).unwrap();
             let want = [
                 sr * sr,
@@ -321,30 +322,49 @@ mod tests {
     #[test]
     fn bad_input_is_rejected() {
         assert!(matches!(
-            SphericalPlot::new(f64::NAN, 0.0, 0.0),
+            beacon_plot(f64::NAN, 0.0, 0.0),
             Err(AdaptiveError::NonFinite {
                 what: "plot range",
                 ..
             })
         ));
         assert!(matches!(
-            SphericalPlot::new(-1.0, 0.0, 0.0),
+            beacon_plot(-1.0, 0.0, 0.0),
             Err(AdaptiveError::InvalidParameter {
                 what: "plot range",
                 ..
             })
         ));
         assert!(matches!(
-            SphericalPlot::new(1.0, 0.0, 2.0),
+            beacon_plot(1.0, 0.0, 2.0),
             Err(AdaptiveError::InvalidParameter {
                 what: "plot elevation",
                 ..
             })
         ));
+        // The conversion itself refuses what beacon_plot refuses, for a measurement built
+        // elsewhere (here one on the sensor, range 0, and one straight up).
+        for m in [
+            SphericalMeasurement::new(0.0, 0.0, 0.1).unwrap(),
+            SphericalMeasurement::new(10.0, 0.0, 1.6).unwrap(),
+        ] {
+            let ok = Sigmas::new(1.0, 1e-3, 1e-3).unwrap();
+            assert!(matches!(
+                ConvertedPlot::from_spherical(&m, &ok),
+                Err(AdaptiveError::InvalidParameter { .. })
+            ));
+        }
+        // The factored covariance formed whole is the vocabulary's measurement.
+        let c = ConvertedPlot::from_spherical(
+            &beacon_plot(3000.0, 0.3, 0.1).unwrap(),
+            &Sigmas::new(3.0, 4e-4, 4e-4).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(*c.measurement().unwrap().covariance(), c.cartesian_noise());
         // A zero standard deviation gives a zero aligned variance: rejected, not a singular R.
         let zero = Sigmas::new(1.0, 0.0, 1.0).unwrap();
         assert!(matches!(
-            ConvertedPlot::from_spherical(&SphericalPlot::new(100.0, 0.0, 0.1).unwrap(), &zero),
+            ConvertedPlot::from_spherical(&beacon_plot(100.0, 0.0, 0.1).unwrap(), &zero),
             Err(AdaptiveError::InvalidParameter {
                 what: "aligned measurement variance",
                 ..

@@ -27,7 +27,7 @@ use crate::adaptive_r::{
 };
 use crate::coupled::CoupledCvFilter;
 use crate::decoupled::{DecoupledEstimate, DecoupledFilter, FrameHandling};
-use crate::decoupled_plot::{ConvertedPlot, SphericalPlot};
+use crate::decoupled_plot::{ConvertedPlot, beacon_plot, beacon_plot_of};
 use crate::error::{AdaptiveError, positive};
 
 /// The filters run side by side on the same plots.
@@ -324,7 +324,7 @@ pub fn simulate_run(
     }
     let p0 = Matrix::<6, 6>::from_diagonal(&init_sd.component_mul(&init_sd));
     let g0 = Gaussian::new(x0, p0)?;
-    let sph0 = SphericalPlot::from_cartesian(&pos_of(&x0))?;
+    let sph0 = beacon_plot_of(&pos_of(&x0))?;
     let frame0 = crate::decoupled_plot::aligned_frame(sph0.azimuth(), sph0.elevation());
     let r0 = ConvertedPlot::from_spherical(&sph0, &model.sigmas_at_range(sph0.range()))?
         .cartesian_noise();
@@ -379,7 +379,7 @@ pub fn simulate_run(
             truth[2 * i + 1] += dt * w[i];
         }
         // Plot: the SNR of this plot fluctuates around the link budget.
-        let true_sph = SphericalPlot::from_cartesian(&pos_of(&truth))?;
+        let true_sph = beacon_plot_of(&pos_of(&truth))?;
         let unit: f64 = StandardNormal.sample(&mut rng);
         let snr_db_offset = fluct * unit;
         let snr = model.link().snr_at(true_sph.range()) * 10f64.powf(snr_db_offset / 10.0);
@@ -390,7 +390,7 @@ pub fn simulate_run(
             s1.elevation() * noise_scale,
         )?;
         let e = normal3(&mut rng);
-        let meas = SphericalPlot::new(
+        let meas = beacon_plot(
             (true_sph.range() + s.range() * e[0]).max(1e-3),
             true_sph.azimuth() + s.azimuth() * e[1],
             true_sph.elevation() + s.elevation() * e[2],

@@ -5,7 +5,8 @@
 //!   ([`AdaptiveDecoupledFilter`], the ADKF, with [`REstimate`] and the corrected
 //!   post-fit sample [`post_fit_sample`]), and the full coupled 6-state Kalman
 //!   filter [`CoupledCvFilter`] as the accuracy reference.
-//! - The radar-beacon plots (seed 003 eqs 9–12, corrected): [`SphericalPlot`],
+//! - The radar-beacon plots (seed 003 eqs 9–12, corrected):
+//!   [`argus_sensors::SphericalMeasurement`]s checked by [`beacon_plot`], converted to
 //!   [`ConvertedPlot`]; their SNR-driven accuracy (eqs 6–8) is `argus_sensors`'
 //!   [`SnrNoise`](argus_sensors::SnrNoise).
 //! - GLRT maneuver detection, MRAS input estimation and the adaptive filter of
@@ -24,7 +25,7 @@
 //! ```
 //! use argus_adaptive::{
 //!     AdaptiveDecoupledFilter, AdaptiveRConfig, AdaptiveState, ConvertedPlot, DecoupledEstimate,
-//!     DecoupledFilter, FrameHandling, REstimate, SphericalPlot, Warmup,
+//!     DecoupledFilter, FrameHandling, REstimate, Warmup, beacon_plot_of,
 //! };
 //! use argus_core_math::{Matrix, Vector};
 //! use argus_sensors::SnrNoise;
@@ -33,7 +34,7 @@
 //! let link = SnrNoise::link_for_range_sigma(149.9, 2.97, 3006.0)?;
 //! let radar = SnrNoise::new(149.9, 2f64.to_radians(), 2f64.to_radians(), 1.6, link)?;
 //! let truth = Vector::<3>::new(-3000.0, -100.0, 157.2);
-//! let sph = SphericalPlot::from_cartesian(&truth)?;
+//! let sph = beacon_plot_of(&truth)?;
 //! let plot = ConvertedPlot::from_spherical(&sph, &radar.sigmas_at_range(sph.range()))?;
 //!
 //! let cdkf = DecoupledFilter::new(0.05, FrameHandling::Rotate)?;
@@ -65,7 +66,7 @@ pub use adaptive_r::{
 };
 pub use coupled::CoupledCvFilter;
 pub use decoupled::{DecoupledEstimate, DecoupledFilter, DecoupledUpdate, FrameHandling};
-pub use decoupled_plot::{ConvertedPlot, SphericalPlot, aligned_frame};
+pub use decoupled_plot::{ConvertedPlot, aligned_frame, beacon_plot, beacon_plot_of};
 pub use error::AdaptiveError;
 
 // Seed 001: GLRT maneuver detection, MRAS input estimation, the adaptive filter.

@@ -263,7 +263,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             output::write_atomic(&out, text.as_bytes())?;
             // Truth at every plot time of each target, in the papers' 2-D order.
             let mut t_text = String::from("t,target,x,vx,y,vy,z,vz\n");
-            let mut times: Vec<f64> = plots.iter().map(|p| p.time).collect();
+            let mut times: Vec<f64> = plots.iter().map(|p| p.plot.time()).collect();
             times.dedup_by(|a, b| a.to_bits() == b.to_bits());
             for t in times {
                 for (id, tr) in scene.targets() {

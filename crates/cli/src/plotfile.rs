@@ -1,19 +1,32 @@
-//! Plot CSV files (see `docs/FORMATS.md`): reading with file/line/field errors, writing.
+//! Plot CSV files (see `docs/FORMATS.md`): one codec, reading and writing the same
+//! columns through one column schema ([`Layout`]); reading names file, line and field in
+//! every error.
 
 use std::path::Path;
 
-use argus_sim::{Measurement, Origin, Plot};
+use argus_core_math::{Matrix, Vector};
+use argus_sensors::{
+    CartesianMeasurement, Measurement, Plot, PolarMeasurement, SensorId, SphericalMeasurement,
+};
+use argus_sim::{LabelledPlot, Origin};
 
 use crate::error::CliError;
 
+/// The columns of every plot file, before the measurement's.
+const TIME: &str = "t";
+const SENSOR: &str = "sensor";
+/// Optional columns after the measurement's.
+const AMPLITUDE: &str = "amplitude";
+const ORIGIN: &str = "origin";
+
 /// Every column a plot file may have.
 const KNOWN: [&str; 16] = [
-    "t",
-    "sensor",
+    TIME,
+    SENSOR,
     "range",
     "azimuth",
     "elevation",
-    "amplitude",
+    AMPLITUDE,
     "x",
     "y",
     "z",
@@ -23,44 +36,108 @@ const KNOWN: [&str; 16] = [
     "r_xz",
     "r_yz",
     "r_zz",
-    "origin",
+    ORIGIN,
 ];
 
-/// A plot's value as read from a file.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum FileValue {
-    /// Range (m), azimuth (rad).
-    Polar { range: f64, azimuth: f64 },
-    /// Range (m), azimuth (rad), elevation (rad).
-    Spherical {
-        range: f64,
-        azimuth: f64,
-        elevation: f64,
-    },
-    /// Position (m) and covariance `[r_xx, r_xy, r_yy]` (m²).
-    Cartesian { x: f64, y: f64, cov: [f64; 3] },
-    /// 3-D position (m) and covariance `[r_xx, r_xy, r_xz, r_yy, r_yz, r_zz]` (m²).
-    Cartesian3 { p: [f64; 3], cov: [f64; 6] },
+/// The column schema: a file holds one layout, whose measurement columns the writer
+/// writes and the reader requires, in the order listed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Layout {
+    /// `range,azimuth`.
+    Polar,
+    /// `range,azimuth,elevation`.
+    Spherical,
+    /// `x,y,r_xx,r_xy,r_yy`.
+    Cartesian2,
+    /// `x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz`.
+    Cartesian3,
 }
 
-impl FileValue {
-    /// Spatial dimension of the plot: 2 or 3.
-    pub(crate) fn dim(&self) -> usize {
+impl Layout {
+    /// The position (or polar) columns, then the covariance's upper triangle row by row.
+    fn columns(self) -> (&'static [&'static str], &'static [&'static str]) {
         match self {
-            Self::Polar { .. } | Self::Cartesian { .. } => 2,
-            Self::Spherical { .. } | Self::Cartesian3 { .. } => 3,
+            Self::Polar => (&["range", "azimuth"], &[]),
+            Self::Spherical => (&["range", "azimuth", "elevation"], &[]),
+            Self::Cartesian2 => (&["x", "y"], &["r_xx", "r_xy", "r_yy"]),
+            Self::Cartesian3 => (
+                &["x", "y", "z"],
+                &["r_xx", "r_xy", "r_xz", "r_yy", "r_yz", "r_zz"],
+            ),
+        }
+    }
+
+    /// All its measurement columns, in file order.
+    fn all_columns(self) -> Vec<&'static str> {
+        let (a, b) = self.columns();
+        a.iter().chain(b).copied().collect()
+    }
+
+    /// The layout of a measurement.
+    fn of(m: &Measurement) -> Self {
+        match m {
+            Measurement::Polar(_) => Self::Polar,
+            Measurement::Spherical(_) => Self::Spherical,
+            Measurement::Cartesian2(_) => Self::Cartesian2,
+            Measurement::Cartesian3(_) => Self::Cartesian3,
+        }
+    }
+
+    /// The values of `m` in the order of [`Layout::all_columns`].
+    fn values(m: &Measurement) -> Vec<f64> {
+        match m {
+            Measurement::Polar(p) => vec![p.range(), p.azimuth()],
+            Measurement::Spherical(p) => vec![p.range(), p.azimuth(), p.elevation()],
+            Measurement::Cartesian2(c) => {
+                let (p, r) = (c.position(), c.covariance());
+                vec![p[0], p[1], r[(0, 0)], r[(0, 1)], r[(1, 1)]]
+            }
+            Measurement::Cartesian3(c) => {
+                let (p, r) = (c.position(), c.covariance());
+                let mut v = vec![p[0], p[1], p[2]];
+                v.extend(upper_3(r));
+                v
+            }
         }
     }
 }
 
-/// One plot read from a file.
+/// The upper triangle `[xx, xy, xz, yy, yz, zz]` of a 3 × 3 matrix.
+fn upper_3(r: &Matrix<3, 3>) -> [f64; 6] {
+    [
+        r[(0, 0)],
+        r[(0, 1)],
+        r[(0, 2)],
+        r[(1, 1)],
+        r[(1, 2)],
+        r[(2, 2)],
+    ]
+}
+
+/// One plot read from a file, with its 1-based line.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct FilePlot {
     /// 1-based line in the file.
     pub(crate) line: u64,
-    pub(crate) time: f64,
-    pub(crate) sensor: u32,
-    pub(crate) value: FileValue,
+    /// The plot (its amplitude when the file gives one; the `origin` column is not read).
+    pub(crate) plot: Plot,
+}
+
+impl FilePlot {
+    /// Its time (s).
+    pub(crate) fn time(&self) -> f64 {
+        self.plot.time()
+    }
+
+    /// Its sensor's number.
+    pub(crate) fn sensor(&self) -> u32 {
+        self.plot.sensor().0
+    }
+
+    /// What it measured.
+    pub(crate) fn measurement(&self) -> &Measurement {
+        self.plot.measurement()
+    }
 }
 
 /// Reads a plot file: header required, columns known, one layout (polar, spherical,
@@ -110,13 +187,11 @@ pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
     let three_d = ["elevation", "z", "r_xz", "r_yz", "r_zz"]
         .iter()
         .any(|c| idx(c).is_some());
-    let need: &[&str] = match (polar, cart, three_d) {
-        (true, false, false) => &["range", "azimuth"],
-        (true, false, true) => &["range", "azimuth", "elevation"],
-        (false, true, false) => &["x", "y", "r_xx", "r_xy", "r_yy"],
-        (false, true, true) => &[
-            "x", "y", "z", "r_xx", "r_xy", "r_xz", "r_yy", "r_yz", "r_zz",
-        ],
+    let layout = match (polar, cart, three_d) {
+        (true, false, false) => Layout::Polar,
+        (true, false, true) => Layout::Spherical,
+        (false, true, false) => Layout::Cartesian2,
+        (false, true, true) => Layout::Cartesian3,
         (true, true, _) => {
             return Err(CliError::input(
                 path,
@@ -134,7 +209,8 @@ pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
             ));
         }
     };
-    for name in need {
+    let covariance_cols = layout.columns().1;
+    for name in layout.all_columns() {
         if idx(name).is_none() {
             return Err(CliError::input(
                 path,
@@ -149,136 +225,110 @@ pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
     for rec in rdr.records() {
         let rec = rec.map_err(|e| csv_error(path, e))?;
         let line = rec.position().map_or(0, csv::Position::line);
+        let at =
+            |name: &str, message: String| CliError::input(path, Some(line), Some(name), message);
         let num = |name: &str| -> Result<f64, CliError> {
             let raw = idx(name).and_then(|i| rec.get(i)).unwrap_or("");
-            let v: f64 = raw.parse().map_err(|_| {
-                CliError::input(
-                    path,
-                    Some(line),
-                    Some(name),
-                    format!("'{raw}' is not a number"),
-                )
-            })?;
+            let v: f64 = raw
+                .parse()
+                .map_err(|_| at(name, format!("'{raw}' is not a number")))?;
             if v.is_finite() {
                 Ok(v)
             } else {
-                Err(CliError::input(
-                    path,
-                    Some(line),
-                    Some(name),
-                    format!("'{raw}' is not finite"),
-                ))
+                Err(at(name, format!("'{raw}' is not finite")))
             }
         };
-        let time = num("t")?;
+        let time = num(TIME)?;
         if time < last_t {
-            return Err(CliError::input(
-                path,
-                Some(line),
-                Some("t"),
+            return Err(at(
+                TIME,
                 format!("time goes backwards ({time} after {last_t})"),
             ));
         }
         last_t = time;
-        let raw_sensor = idx("sensor").and_then(|i| rec.get(i)).unwrap_or("");
+        let raw_sensor = idx(SENSOR).and_then(|i| rec.get(i)).unwrap_or("");
         let sensor: u32 = raw_sensor.parse().map_err(|_| {
-            CliError::input(
-                path,
-                Some(line),
-                Some("sensor"),
+            at(
+                SENSOR,
                 format!("'{raw_sensor}' is not a sensor id (a non-negative integer)"),
             )
         })?;
         // An empty amplitude field means the plot has none (a file may mix both).
-        if idx("amplitude")
+        let amplitude = if idx(AMPLITUDE)
             .and_then(|i| rec.get(i))
             .is_some_and(|raw| !raw.trim().is_empty())
         {
-            num("amplitude")?;
-        }
-        let value = if polar {
-            let range = num("range")?;
-            if range <= 0.0 {
-                return Err(CliError::input(
-                    path,
-                    Some(line),
-                    Some("range"),
-                    format!("range {range} must be positive"),
-                ));
-            }
-            let azimuth = num("azimuth")?;
-            if three_d {
-                let elevation = num("elevation")?;
-                if elevation.abs() > std::f64::consts::FRAC_PI_2 {
-                    return Err(CliError::input(
-                        path,
-                        Some(line),
-                        Some("elevation"),
-                        format!("elevation {elevation} rad lies outside [-π/2, π/2]"),
-                    ));
-                }
-                FileValue::Spherical {
-                    range,
-                    azimuth,
-                    elevation,
-                }
-            } else {
-                FileValue::Polar { range, azimuth }
-            }
-        } else if three_d {
-            let cov = [
-                num("r_xx")?,
-                num("r_xy")?,
-                num("r_xz")?,
-                num("r_yy")?,
-                num("r_yz")?,
-                num("r_zz")?,
-            ];
-            if !positive_definite_3(&cov) {
-                return Err(CliError::input(
-                    path,
-                    Some(line),
-                    Some("r_xx"),
-                    "covariance [r_xx r_xy r_xz; r_xy r_yy r_yz; r_xz r_yz r_zz] is not positive definite",
-                ));
-            }
-            FileValue::Cartesian3 {
-                p: [num("x")?, num("y")?, num("z")?],
-                cov,
-            }
+            Some(num(AMPLITUDE)?)
         } else {
-            let cov = [num("r_xx")?, num("r_xy")?, num("r_yy")?];
-            if cov[0] <= 0.0 || cov[2] <= 0.0 || cov[0] * cov[2] - cov[1] * cov[1] <= 0.0 {
-                return Err(CliError::input(
-                    path,
-                    Some(line),
-                    Some("r_xx"),
-                    "covariance [r_xx r_xy; r_xy r_yy] is not positive definite",
-                ));
+            None
+        };
+        let measurement: Measurement = match layout {
+            Layout::Polar | Layout::Spherical => {
+                let range = num("range")?;
+                if range <= 0.0 {
+                    return Err(at("range", format!("range {range} must be positive")));
+                }
+                let azimuth = num("azimuth")?;
+                let bad = |e: argus_sensors::SensorError| at("range", e.to_string());
+                if layout == Layout::Spherical {
+                    let elevation = num("elevation")?;
+                    if elevation.abs() > std::f64::consts::FRAC_PI_2 {
+                        return Err(at(
+                            "elevation",
+                            format!("elevation {elevation} rad lies outside [-π/2, π/2]"),
+                        ));
+                    }
+                    SphericalMeasurement::new(range, azimuth, elevation)
+                        .map_err(bad)?
+                        .into()
+                } else {
+                    PolarMeasurement::new(range, azimuth).map_err(bad)?.into()
+                }
             }
-            FileValue::Cartesian {
-                x: num("x")?,
-                y: num("y")?,
-                cov,
+            Layout::Cartesian2 | Layout::Cartesian3 => {
+                // The covariance is read (and checked) before the position, so that a
+                // bad covariance is reported at `r_xx` whatever the position holds.
+                let cov: Vec<f64> = covariance_cols
+                    .iter()
+                    .map(|c| num(c))
+                    .collect::<Result<_, _>>()?;
+                let not_pd = || {
+                    let m = if layout == Layout::Cartesian3 {
+                        "covariance [r_xx r_xy r_xz; r_xy r_yy r_yz; r_xz r_yz r_zz] is not positive definite"
+                    } else {
+                        "covariance [r_xx r_xy; r_xy r_yy] is not positive definite"
+                    };
+                    at("r_xx", m.to_owned())
+                };
+                if layout == Layout::Cartesian3 {
+                    let [xx, xy, xz, yy, yz, zz] = cov[..] else {
+                        return Err(not_pd());
+                    };
+                    let r = Matrix::<3, 3>::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+                    argus_core_math::SpdFactor::new(&r, "plot covariance").map_err(|_| not_pd())?;
+                    let p = Vector::<3>::new(num("x")?, num("y")?, num("z")?);
+                    CartesianMeasurement::new(p, r)
+                        .map_err(|_| not_pd())?
+                        .into()
+                } else {
+                    let [xx, xy, yy] = cov[..] else {
+                        return Err(not_pd());
+                    };
+                    let r = Matrix::<2, 2>::new(xx, xy, xy, yy);
+                    argus_core_math::SpdFactor::new(&r, "plot covariance").map_err(|_| not_pd())?;
+                    let p = Vector::<2>::new(num("x")?, num("y")?);
+                    CartesianMeasurement::new(p, r)
+                        .map_err(|_| not_pd())?
+                        .into()
+                }
             }
         };
-        out.push(FilePlot {
-            line,
-            time,
-            sensor,
-            value,
-        });
+        let plot = Plot::new(time, SensorId(sensor), measurement)
+            .and_then(|p| p.with_amplitude(amplitude))
+            .map_err(|e| at(TIME, e.to_string()))?;
+        out.push(FilePlot { line, plot });
     }
     Ok(out)
-}
-
-/// Whether the symmetric matrix with upper triangle `[xx, xy, xz, yy, yz, zz]` is
-/// positive definite (Sylvester's criterion: leading principal minors positive).
-fn positive_definite_3(c: &[f64; 6]) -> bool {
-    let [xx, xy, xz, yy, yz, zz] = *c;
-    let m2 = xx * yy - xy * xy;
-    let det = xx * (yy * zz - yz * yz) - xy * (xy * zz - yz * xz) + xz * (xy * yz - yy * xz);
-    xx > 0.0 && m2 > 0.0 && det > 0.0
 }
 
 fn csv_error(path: &Path, e: csv::Error) -> CliError {
@@ -295,74 +345,41 @@ fn csv_error(path: &Path, e: csv::Error) -> CliError {
     CliError::input(path, line, None, message)
 }
 
-/// The layouts [`write_text`] can write, from the first plot's measurement.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Layout {
-    Polar,
-    Spherical,
-    Cartesian2,
-    Cartesian3,
-}
-
-/// Plot file text for simulated plots (the layout of the first plot: polar, spherical,
-/// Cartesian 2-D or 3-D; plots of another layout are skipped and counted). Includes the
-/// `origin` column (`target:<id>` or `clutter`) — `argus track` ignores it.
-pub(crate) fn write_text(plots: &[Plot]) -> (String, usize) {
-    let layout = match plots.first().map(|p| p.measurement) {
-        Some(Measurement::Spherical { .. }) => Layout::Spherical,
-        Some(Measurement::Cartesian2d { .. }) => Layout::Cartesian2,
-        Some(Measurement::Cartesian3d { .. }) => Layout::Cartesian3,
-        _ => Layout::Polar,
-    };
-    let amp = plots.iter().any(|p| p.amplitude.is_some());
-    let mut s = String::from(match layout {
-        Layout::Polar => "t,sensor,range,azimuth",
-        Layout::Spherical => "t,sensor,range,azimuth,elevation",
-        Layout::Cartesian2 => "t,sensor,x,y,r_xx,r_xy,r_yy",
-        Layout::Cartesian3 => "t,sensor,x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz",
-    });
+/// Plot file text for simulated plots, in the layout of the first plot (polar,
+/// spherical, Cartesian 2-D or 3-D; plots of another layout are skipped and counted), the
+/// columns of [`Layout`]. Includes the `origin` column (`target:<id>` or `clutter`) —
+/// `argus track` ignores it.
+pub(crate) fn write_text(plots: &[LabelledPlot]) -> (String, usize) {
+    let layout = plots
+        .first()
+        .map_or(Layout::Polar, |p| Layout::of(p.plot.measurement()));
+    let amp = plots.iter().any(|p| p.plot.amplitude().is_some());
+    let mut columns = vec![TIME, SENSOR];
+    columns.extend(layout.all_columns());
     if amp {
-        s.push_str(",amplitude");
+        columns.push(AMPLITUDE);
     }
-    s.push_str(",origin\n");
+    columns.push(ORIGIN);
+    let mut s = columns.join(",");
+    s.push('\n');
     let mut skipped = 0;
-    for p in plots {
-        let body = match (layout, p.measurement) {
-            (Layout::Polar, Measurement::Polar { range, azimuth }) => format!("{range},{azimuth}"),
-            (
-                Layout::Spherical,
-                Measurement::Spherical {
-                    range,
-                    azimuth,
-                    elevation,
-                },
-            ) => format!("{range},{azimuth},{elevation}"),
-            (Layout::Cartesian2, Measurement::Cartesian2d { position, cov }) => format!(
-                "{},{},{},{},{}",
-                position[0], position[1], cov[0], cov[1], cov[2]
-            ),
-            (Layout::Cartesian3, Measurement::Cartesian3d { position, cov }) => {
-                let v: Vec<String> = position
-                    .iter()
-                    .chain(cov.iter())
-                    .map(|x| format!("{x}"))
-                    .collect();
-                v.join(",")
-            }
-            _ => {
-                skipped += 1;
-                continue;
-            }
-        };
-        s.push_str(&format!("{},{},{body}", p.time, p.sensor.0));
+    for LabelledPlot { plot: p, origin } in plots {
+        if Layout::of(p.measurement()) != layout {
+            skipped += 1;
+            continue;
+        }
+        s.push_str(&format!("{},{}", p.time(), p.sensor().0));
+        for v in Layout::values(p.measurement()) {
+            s.push_str(&format!(",{v}"));
+        }
         if amp {
             // No NaN as a "missing" marker: a plot without amplitude leaves the field empty.
-            match p.amplitude {
+            match p.amplitude() {
                 Some(a) => s.push_str(&format!(",{a}")),
                 None => s.push(','),
             }
         }
-        match p.origin {
+        match origin {
             Origin::Target(id) => s.push_str(&format!(",target:{}\n", id.0)),
             Origin::Clutter => s.push_str(",clutter\n"),
         }
@@ -389,46 +406,53 @@ mod tests {
     }
 
     #[test]
-    fn sylvester_criterion_on_hand_matrices() {
-        // diag(1, 2, 3): minors 1, 2, 6 > 0.
-        assert!(positive_definite_3(&[1.0, 0.0, 0.0, 2.0, 0.0, 3.0]));
-        // [[2, 1, 0], [1, 2, 1], [0, 1, 2]]: minors 2, 3, det = 4 > 0.
-        assert!(positive_definite_3(&[2.0, 1.0, 0.0, 2.0, 1.0, 2.0]));
-        // [[1, 1, 1], [1, 1, 1], [1, 1, 1]] is singular (rank 1).
-        assert!(!positive_definite_3(&[1.0, 1.0, 1.0, 1.0, 1.0, 1.0]));
-        // [[1, 0, 2], [0, 1, 0], [2, 0, 1]]: det = 1 − 4 = −3 < 0 though the 2×2 minor is 1.
-        assert!(!positive_definite_3(&[1.0, 0.0, 2.0, 1.0, 0.0, 1.0]));
+    fn covariances_are_checked_whole() {
+        let row = |cov: &str| {
+            parse(&format!(
+                "t,sensor,x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz\n0,1,1,2,3,{cov}\n"
+            ))
+        };
+        // diag(1, 2, 3) and [[2, 1, 0], [1, 2, 1], [0, 1, 2]] (minors 2, 3, 4) are definite.
+        assert!(row("1,0,0,2,0,3").is_ok());
+        assert!(row("2,1,0,2,1,2").is_ok());
+        // All ones is singular (rank 1); [[1, 0, 2], [0, 1, 0], [2, 0, 1]] has det −3 < 0
+        // though its 2 × 2 minor is 1. Both named at r_xx, line 2.
+        for bad in ["1,1,1,1,1,1", "1,0,2,1,0,1"] {
+            assert_eq!(at(&row(bad).unwrap_err()), (Some(2), Some("r_xx".into())));
+        }
+        // A bad covariance is reported before a bad position.
+        let e = parse("t,sensor,x,y,r_xx,r_xy,r_yy\n0,1,nan,2,1,2,1\n").unwrap_err();
+        assert_eq!(at(&e), (Some(2), Some("r_xx".into())));
     }
 
     #[test]
     fn layouts_are_recognised() {
         let p = parse("t,sensor,range,azimuth,elevation\n0,1,1000,0.1,0.2\n").unwrap();
         assert_eq!(
-            p[0].value,
-            FileValue::Spherical {
-                range: 1000.0,
-                azimuth: 0.1,
-                elevation: 0.2
-            }
+            *p[0].measurement(),
+            Measurement::from(SphericalMeasurement::new(1000.0, 0.1, 0.2).unwrap())
         );
-        assert_eq!(p[0].value.dim(), 3);
+        assert_eq!(p[0].measurement().dim(), 3);
         // Columns in any order; the covariance keeps its upper-triangle order.
         // [[1, .2, .3], [.2, 4, 1], [.3, 1, 6]]: minors 1, 3.96, det 22.52 > 0.
         let p =
             parse("r_zz,r_yz,r_yy,r_xz,r_xy,r_xx,z,y,x,sensor,t\n6,1,4,0.3,0.2,1,3,2,1,4,0.5\n")
                 .unwrap();
+        let Measurement::Cartesian3(c) = p[0].measurement() else {
+            panic!("not 3-D Cartesian");
+        };
+        assert_eq!(*c.position(), Vector::<3>::new(1.0, 2.0, 3.0));
+        // Read exactly (the same decimal strings parse to the same f64).
+        let bits = |v: [f64; 6]| v.map(f64::to_bits);
         assert_eq!(
-            p[0].value,
-            FileValue::Cartesian3 {
-                p: [1.0, 2.0, 3.0],
-                cov: [1.0, 0.2, 0.3, 4.0, 1.0, 6.0]
-            }
+            bits(upper_3(c.covariance())),
+            bits([1.0, 0.2, 0.3, 4.0, 1.0, 6.0])
         );
         // cov [[1, .2, .3], [.2, 4, 5], [.3, 5, 6]] has det < 0: rejected on line 2.
         let e = parse("t,sensor,x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz\n0,1,1,2,3,1,0.2,0.3,4,5,6\n")
             .unwrap_err();
         assert_eq!(at(&e), (Some(2), Some("r_xx".into())));
-        assert_eq!(p[0].sensor, 4);
+        assert_eq!(p[0].sensor(), 4);
         assert_eq!(p[0].line, 2);
     }
 
@@ -436,24 +460,57 @@ mod tests {
     fn plots_without_amplitude_round_trip_beside_plots_with_one() {
         // A target plot with an amplitude and one without: the writer leaves the field
         // empty (never NaN) and the reader accepts the file.
-        let mk = |t: f64, amplitude| Plot {
-            time: t,
-            sensor: argus_sim::SensorId(1),
-            measurement: Measurement::Polar {
-                range: 1000.0 + t,
-                azimuth: 0.1,
-            },
-            amplitude,
+        let mk = |t: f64, amplitude| LabelledPlot {
+            plot: Plot::polar(t, SensorId(1), 1000.0 + t, 0.1)
+                .unwrap()
+                .with_amplitude(amplitude)
+                .unwrap(),
             origin: Origin::Clutter,
         };
-        let (text, skipped) = write_text(&[mk(0.0, Some(2.5)), mk(1.0, None)]);
+        let plots = [mk(0.0, Some(2.5)), mk(1.0, None)];
+        let (text, skipped) = write_text(&plots);
         assert_eq!(skipped, 0);
         assert!(!text.contains("NaN"), "{text}");
+        // What is written reads back as the same plots (Rust's shortest round-trip
+        // formatting of f64 is exact).
         let p = parse(&text).unwrap();
         assert_eq!(p.len(), 2);
+        assert_eq!(p[0].plot, plots[0].plot);
+        assert_eq!(p[1].plot, plots[1].plot);
         // A non-numeric amplitude is still an error naming line and field.
         let e = parse("t,sensor,range,azimuth,amplitude\n0,1,1000,0.1,x\n").unwrap_err();
         assert_eq!(at(&e), (Some(2), Some("amplitude".into())));
+    }
+
+    #[test]
+    fn every_layout_round_trips_through_one_schema() {
+        let r2 = Matrix::<2, 2>::new(4.0, 0.5, 0.5, 9.0);
+        let r3 = Matrix::<3, 3>::new(4.0, 0.5, 0.1, 0.5, 9.0, 0.2, 0.1, 0.2, 1.0);
+        let measurements: [Measurement; 4] = [
+            PolarMeasurement::new(1e4, -2.5).unwrap().into(),
+            SphericalMeasurement::new(1e4, 0.3, 0.05).unwrap().into(),
+            CartesianMeasurement::new(Vector::<2>::new(-3.25, 1e5 / 3.0), r2)
+                .unwrap()
+                .into(),
+            CartesianMeasurement::new(Vector::<3>::new(1.0, -2.0, 1.0 / 3.0), r3)
+                .unwrap()
+                .into(),
+        ];
+        for m in measurements {
+            let plots: Vec<LabelledPlot> = (0..3)
+                .map(|k| LabelledPlot {
+                    plot: Plot::new(0.5 * f64::from(k), SensorId(k), m).unwrap(),
+                    origin: Origin::Target(argus_sim::TargetId(k)),
+                })
+                .collect();
+            let (text, skipped) = write_text(&plots);
+            assert_eq!(skipped, 0);
+            let back = parse(&text).unwrap();
+            let read: Vec<Plot> = back.iter().map(|p| p.plot).collect();
+            let written: Vec<Plot> = plots.iter().map(|p| p.plot).collect();
+            assert_eq!(read, written, "{text}");
+            assert_eq!(back[2].line, 4);
+        }
     }
 
     #[test]

@@ -11,10 +11,12 @@ use argus_filters::{
     SmoothingFilter, Ukf, UtParams, rts_smooth, rts_smooth_into, two_point_cv2,
 };
 use argus_motion_models::{CoordinatedTurnRate, Cv2D, LinearMotionModel, MotionModel};
-use argus_sensors::{CartesianPosition, ConversionMethod, Polar2D, RadarNoise, convert_polar};
+use argus_sensors::{
+    CartesianPosition, ConversionMethod, Measurement, Polar2D, RadarNoise, convert_polar,
+};
 use argus_sim::{
-    KinematicState, Measurement, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory,
-    Truth, generate_plots, run_rng,
+    KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
+    generate_plots, run_rng,
 };
 use nalgebra::{DMatrix, DVector};
 use rand::RngExt;
@@ -295,8 +297,10 @@ fn smoothed_nees_of_a_cv_polar_campaign_is_in_its_band() {
         let plots = generate_plots(&truth, std::slice::from_ref(&radar), &mut rng).unwrap();
         let conv: Vec<(f64, Vector<2>, Matrix<2, 2>)> = plots
             .iter()
-            .filter_map(|pl| match pl.measurement {
-                Measurement::Polar { range, azimuth } => {
+            .filter_map(|pl| match pl.plot.measurement() {
+                Measurement::Polar(m) => {
+                    let (range, azimuth) = (m.range(), m.azimuth());
+
                     let c = convert_polar(
                         range,
                         azimuth,
@@ -305,7 +309,7 @@ fn smoothed_nees_of_a_cv_polar_campaign_is_in_its_band() {
                         ConversionMethod::Unbiased,
                     )
                     .unwrap();
-                    Some((pl.time, c.position, c.covariance))
+                    Some((pl.plot.time(), c.position, c.covariance))
                 }
                 _ => None,
             })

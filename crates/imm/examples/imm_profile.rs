@@ -17,13 +17,14 @@
 //! be checked by comparing that output before and after.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic, missing_docs)]
 
+use argus_sensors::PolarMeasurement;
 use std::hint::black_box;
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::Kf;
 use argus_imm::{
     EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate, MarkovMatrix, MultiImm, MultiImmEstimate,
-    NoiseGrid, NoiseVariances, PlotConversion, PolarPlot, UnbiasedConversion, VariationalEstimate,
+    NoiseGrid, NoiseVariances, PlotConversion, UnbiasedConversion, VariationalEstimate,
     VariationalNoiseImm,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
@@ -64,7 +65,7 @@ fn main() {
     let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
     let var = NoiseVariances::from_sigmas(70.0, 0.08_f64.to_radians()).unwrap();
     let (x, y) = (-60_000.0 + 450.0_f64, -20_000.0_f64);
-    let plot = PolarPlot::new(x.hypot(y), y.atan2(x)).unwrap();
+    let plot = PolarMeasurement::new(x.hypot(y), y.atan2(x)).unwrap();
     let mut sum = 0.0;
     match which {
         "imm" => {
@@ -151,7 +152,7 @@ fn track(steps: usize) {
             1.0
         };
         plots.push(
-            PolarPlot::new(
+            PolarMeasurement::new(
                 (x[0].hypot(x[2]) + truth.range().sqrt() * nr) * ulp,
                 x[2].atan2(x[0]) + truth.azimuth().sqrt() * nt,
             )

@@ -1,10 +1,11 @@
 //! A plot-difference measurement-noise estimator around one IMM (beyond seed 000).
 
 use argus_filters::GaussianFilter;
+use argus_sensors::PolarMeasurement;
 
 use crate::error::{check_forgetting, check_positive};
-use crate::variational::wrap_angle;
-use crate::{Imm, ImmError, ImmEstimate, ImmUpdate, NoiseVariances, PlotConversion, PolarPlot};
+use crate::{Imm, ImmError, ImmEstimate, ImmUpdate, NoiseVariances, PlotConversion};
+use argus_sensors::wrap_angle;
 
 /// The state of a [`DifferenceNoiseImm`]: the IMM estimate, the last three plots with the
 /// intervals between them, and the accumulated squared differences per axis.
@@ -150,7 +151,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> DifferenceNoiseImm<F,
         &self,
         est: &DifferenceEstimate<N, R>,
         dt: f64,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         conversion: &C,
     ) -> Result<(DifferenceEstimate<N, R>, ImmUpdate<N, R>), ImmError> {
         if !(dt.is_finite() && dt > 0.0) {
@@ -267,7 +268,7 @@ mod tests {
             let az = std::f64::consts::PI - 0.2 + 6e-6 * t - 3e-11 * t * t;
             let nr: f64 = StandardNormal.sample(&mut rng);
             let nt: f64 = StandardNormal.sample(&mut rng);
-            let plot = PolarPlot::new(r + sr * nr, wrap_angle(az + st * nt)).unwrap();
+            let plot = PolarMeasurement::new(r + sr * nr, wrap_angle(az + st * nt)).unwrap();
             // The IMM sees a target it cannot follow (it starts at rest); the estimate
             // does not care.
             est = est_imm.step(&est, dt, &plot, &conv).unwrap().0;
@@ -303,7 +304,7 @@ mod tests {
         let est = DifferenceEstimate::new(init, var, 2.0).unwrap();
         let before = est;
         let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
-        let plot = PolarPlot::new(1000.0, 0.0).unwrap();
+        let plot = PolarMeasurement::new(1000.0, 0.0).unwrap();
         for dt in [0.0, -1.0, f64::NAN, f64::INFINITY] {
             assert!(matches!(
                 d.step(&est, dt, &plot, &conv),

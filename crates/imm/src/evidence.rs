@@ -2,10 +2,11 @@
 
 use argus_core_math::Gaussian;
 use argus_filters::GaussianFilter;
+use argus_sensors::PolarMeasurement;
 
 use crate::error::{check_clip, check_forgetting, check_positive};
 use crate::markov::log_sum_exp;
-use crate::{Imm, ImmError, ImmEstimate, NoiseVariances, PlotConversion, PolarPlot};
+use crate::{Imm, ImmError, ImmEstimate, NoiseVariances, PlotConversion};
 
 /// The hypotheses of an [`EvidenceNoiseImm`] as `(range, azimuth)` offsets in units of the
 /// log step `h`: the anchor, then range `−h`, `+h`, then azimuth `−h`, `+h` (a "plus" grid).
@@ -206,7 +207,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> EvidenceNoiseImm<F, N
         &self,
         est: &EvidenceEstimate<N, R>,
         dt: f64,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         conversion: &C,
     ) -> Result<EvidenceEstimate<N, R>, ImmError> {
         let hyp = self.hypotheses(est);
@@ -301,7 +302,7 @@ type PolarMoments = ([f64; 2], [f64; 2]);
 #[allow(non_snake_case)]
 fn polar_posterior<const N: usize, const R: usize, const M: usize, C: PlotConversion<N, M>>(
     imm: &ImmEstimate<N, R>,
-    plot: &PolarPlot,
+    plot: &PolarMeasurement,
     conversion: &C,
 ) -> Result<Option<PolarMoments>, ImmError> {
     let c = imm.combined()?;
@@ -314,6 +315,6 @@ fn polar_posterior<const N: usize, const R: usize, const M: usize, C: PlotConver
     let J = argus_core_math::Matrix::<2, 2>::new(cs, sn, -sn / rng, cs / rng);
     let JPJ = J * conversion.position_cov(c.cov()) * J.transpose();
     let e_r = plot.range() - rng;
-    let e_t = crate::variational::wrap_angle(plot.azimuth() - p[1].atan2(p[0]));
+    let e_t = argus_sensors::wrap_angle(plot.azimuth() - p[1].atan2(p[0]));
     Ok(Some(([e_r, e_t], [JPJ[(0, 0)], JPJ[(1, 1)]])))
 }

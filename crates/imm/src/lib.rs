@@ -72,8 +72,7 @@ pub use imm::{Imm, ImmEstimate, ImmPrediction, ImmUpdate, moment_match};
 pub use markov::{MarkovMatrix, PROBABILITY_SUM_TOL, log_probabilities, log_sum_exp};
 pub use multi::{MultiImm, MultiImmEstimate, MultiImmUpdate, NoiseGrid};
 pub use polar::{
-    NoiseVariances, PlotConversion, PolarPlot, PositionMeasurement, UnbiasedConversion,
-    unbiased_conversion,
+    NoiseVariances, PlotConversion, PositionMeasurement, UnbiasedConversion, unbiased_conversion,
 };
 pub use smooth::{
     ImmSmoothError, ImmSmoothed, ImmStep, ImmTrack, ImmTransition, PairWeights, imm_smooth,

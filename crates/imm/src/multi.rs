@@ -2,10 +2,11 @@
 
 use argus_core_math::Gaussian;
 use argus_filters::GaussianFilter;
+use argus_sensors::PolarMeasurement;
 
 use crate::error::{check_clip, check_positive};
 use crate::imm::{ModeWeights, moment_match};
-use crate::{Imm, ImmError, ImmEstimate, NoiseVariances, PlotConversion, PolarPlot};
+use crate::{Imm, ImmError, ImmEstimate, NoiseVariances, PlotConversion};
 
 /// The `K` noise hypotheses of a multi-IMM, as multiplicative factors
 /// `(aₘ, bₘ)` on the reference variances: IMM `m` assumes `(aₘ σr²_ref, bₘ σθ²_ref)`.
@@ -266,7 +267,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
         &self,
         est: &MultiImmEstimate<N, R, K>,
         dt: f64,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         conversion: &C,
     ) -> Result<MultiImmUpdate<N, R, K>, ImmError> {
         // One buffer for the result, updated in place (no copies of the K estimates).
@@ -293,7 +294,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize, const K: usize> Multi
     pub fn update<const M: usize, C: PlotConversion<N, M>>(
         &self,
         predicted: &MultiImmEstimate<N, R, K>,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         conversion: &C,
     ) -> Result<MultiImmUpdate<N, R, K>, ImmError> {
         let cbar = predicted.imms.map(|e| *e.weights());
@@ -374,7 +375,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         src: &[ImmEstimate<N, R>; K],
         out: &mut [ImmEstimate<N, R>; K],
         dt: f64,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         hyp: &[NoiseVariances; K],
         conversion: &C,
     ) -> Result<[f64; K], ImmError> {
@@ -392,7 +393,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         &self,
         imms: &mut [ImmEstimate<N, R>; K],
         cbar: &[ModeWeights<R>; K],
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         hyp: &[NoiseVariances; K],
         conversion: &C,
     ) -> Result<[f64; K], ImmError> {

@@ -1,54 +1,13 @@
-//! Polar plots, their measurement-noise variances, and the unbiased conversion to a
+//! Polar plots' measurement-noise variances (the plots are [`argus_sensors::PolarMeasurement`]s), and the unbiased conversion to a
 //! Cartesian position measurement that the multi-IMM applies with each IMM's own `R`.
 
 use argus_core_math::{Matrix, Vector};
-use argus_sensors::{ConversionMethod, LinearMeasurementModel, MeasurementModel, convert_polar};
+use argus_sensors::{
+    ConversionMethod, LinearMeasurementModel, MeasurementModel, PolarMeasurement, convert_polar,
+};
 
 use crate::ImmError;
 use crate::error::check_positive;
-
-/// A radar plot: range (m) and azimuth (rad, from +x counter-clockwise).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PolarPlot {
-    range: f64,
-    azimuth: f64,
-}
-
-impl PolarPlot {
-    /// A plot at `range` metres and `azimuth` radians.
-    ///
-    /// # Errors
-    /// [`ImmError::InvalidParameter`] for a non-finite value or a negative range.
-    pub fn new(range: f64, azimuth: f64) -> Result<Self, ImmError> {
-        if !(range.is_finite() && range >= 0.0) {
-            return Err(ImmError::InvalidParameter {
-                what: "plot range",
-                value: range,
-                reason: "must be finite and non-negative",
-            });
-        }
-        if !azimuth.is_finite() {
-            return Err(ImmError::InvalidParameter {
-                what: "plot azimuth",
-                value: azimuth,
-                reason: "must be finite",
-            });
-        }
-        Ok(Self { range, azimuth })
-    }
-
-    /// Range, m.
-    #[must_use]
-    pub fn range(&self) -> f64 {
-        self.range
-    }
-
-    /// Azimuth, rad.
-    #[must_use]
-    pub fn azimuth(&self) -> f64 {
-        self.azimuth
-    }
-}
 
 /// Range and azimuth measurement-noise variances `(σr², σθ²)` in m² and rad².
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -123,12 +82,12 @@ impl NoiseVariances {
 /// [`ImmError::Sensor`] for a zero range; [`ImmError::Math`] if the covariance is not
 /// positive definite.
 pub fn unbiased_conversion(
-    plot: &PolarPlot,
+    plot: &PolarMeasurement,
     var: &NoiseVariances,
 ) -> Result<(Vector<2>, Matrix<2, 2>), ImmError> {
     let c = convert_polar(
-        plot.range,
-        plot.azimuth,
+        plot.range(),
+        plot.azimuth(),
         var.range.sqrt(),
         var.azimuth.sqrt(),
         ConversionMethod::Unbiased,
@@ -216,7 +175,7 @@ pub trait PlotConversion<const N: usize, const M: usize> {
     /// [`ImmError`] when the conversion is undefined for this plot.
     fn convert(
         &self,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         var: &NoiseVariances,
     ) -> Result<(Self::Measurement, Vector<M>), ImmError>;
 
@@ -271,7 +230,7 @@ impl<const N: usize> PlotConversion<N, 2> for UnbiasedConversion<N> {
 
     fn convert(
         &self,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         var: &NoiseVariances,
     ) -> Result<(PositionMeasurement<N>, Vector<2>), ImmError> {
         let (z, r) = unbiased_conversion(plot, var)?;
@@ -307,7 +266,8 @@ mod tests {
         let mut zs = Vec::with_capacity(n);
         let mut rsum = Matrix::<2, 2>::zeros();
         for _ in 0..n {
-            let plot = PolarPlot::new(r0 + nr.sample(&mut rng), th0 + nt.sample(&mut rng)).unwrap();
+            let plot =
+                PolarMeasurement::new(r0 + nr.sample(&mut rng), th0 + nt.sample(&mut rng)).unwrap();
             let (z, r) = unbiased_conversion(&plot, &var).unwrap();
             mean += z;
             rsum += r;
@@ -342,8 +302,8 @@ mod tests {
 
     #[test]
     fn bad_plots_and_variances_are_rejected() {
-        assert!(PolarPlot::new(-1.0, 0.0).is_err());
-        assert!(PolarPlot::new(1.0, f64::NAN).is_err());
+        assert!(PolarMeasurement::new(-1.0, 0.0).is_err());
+        assert!(PolarMeasurement::new(1.0, f64::NAN).is_err());
         assert!(NoiseVariances::new(0.0, 1.0).is_err());
         assert!(NoiseVariances::new(1.0, f64::INFINITY).is_err());
         assert!(UnbiasedConversion::<4>::new(0, 4).is_err());

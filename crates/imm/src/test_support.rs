@@ -6,10 +6,11 @@ use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction};
 use argus_motion_models::{LinearMotionModel, MotionModel};
 use argus_sensors::MeasurementModel;
+use argus_sensors::PolarMeasurement;
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};
 
-use crate::{Imm, ImmEstimate, MarkovMatrix, NoiseVariances, PolarPlot, unbiased_conversion};
+use crate::{Imm, ImmEstimate, MarkovMatrix, NoiseVariances, unbiased_conversion};
 
 /// Linear KF (seed 000 eqs (3)–(4)).
 #[derive(Debug, Clone, Copy)]
@@ -188,22 +189,22 @@ pub(crate) fn beam_times() -> Vec<f64> {
 }
 
 /// One run's plots.
-pub(crate) fn plots<G: Rng>(times: &[f64], sr: f64, st: f64, rng: &mut G) -> Vec<PolarPlot> {
+pub(crate) fn plots<G: Rng>(times: &[f64], sr: f64, st: f64, rng: &mut G) -> Vec<PolarMeasurement> {
     times
         .iter()
         .map(|&t| {
             let x = truth_at(t);
             let nr: f64 = StandardNormal.sample(rng);
             let nt: f64 = StandardNormal.sample(rng);
-            PolarPlot::new(x[0].hypot(x[2]) + sr * nr, x[2].atan2(x[0]) + st * nt).unwrap()
+            PolarMeasurement::new(x[0].hypot(x[2]) + sr * nr, x[2].atan2(x[0]) + st * nt).unwrap()
         })
         .collect()
 }
 
 /// Two-point initialisation (Bar-Shalom et al. 2001 §5.5.3) with the filter's assumed `var`.
 pub(crate) fn two_point(
-    p1: &PolarPlot,
-    p2: &PolarPlot,
+    p1: &PolarMeasurement,
+    p2: &PolarMeasurement,
     T: f64,
     var: &NoiseVariances,
 ) -> ImmEstimate<4, 3> {

@@ -5,6 +5,7 @@
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::GaussianFilter;
 use argus_motion_models::MotionModel;
+use argus_sensors::PolarMeasurement;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -244,7 +245,7 @@ fn multi_imm_bad_steps_leave_the_estimate_untouched() {
     );
     let copy = est;
     let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
-    let plot = PolarPlot::new(150.0, 0.1).unwrap();
+    let plot = PolarMeasurement::new(150.0, 0.1).unwrap();
     assert!(matches!(
         m.step(&est, -5.0, &plot, &conv),
         Err(ImmError::InvalidInterval { .. })
@@ -337,7 +338,7 @@ fn seed_base() -> u64 {
     std::env::var("EV_SEED").map_or(1000, |v| v.parse().unwrap())
 }
 
-fn run_one(kind: Estimator, start_factor: f64, times: &[f64], pl: &[PolarPlot]) -> Outcome {
+fn run_one(kind: Estimator, start_factor: f64, times: &[f64], pl: &[PolarMeasurement]) -> Outcome {
     let truth = NoiseVariances::from_sigmas(SIGMA_R, sigma_t()).unwrap();
     let var0 =
         NoiseVariances::new(truth.range() * start_factor, truth.azimuth() * start_factor).unwrap();
@@ -663,7 +664,7 @@ fn difference_estimator_within_three_percent_from_every_start() {
         for (j, wj) in w.iter().enumerate() {
             let p = &clean[k - 3 + j];
             dr += wj * (p.range() - clean[k].range());
-            da += wj * crate::variational::wrap_angle(p.azimuth() - clean[k].azimuth());
+            da += wj * argus_sensors::wrap_angle(p.azimuth() - clean[k].azimuth());
         }
         c[0] += dr * dr / norm / truth.range() / n_q as f64;
         c[1] += da * da / norm / truth.azimuth() / n_q as f64;
@@ -808,7 +809,7 @@ fn imm_consistency_on_gimpo() {
                 let jpj = J * P * J.transpose();
                 let e = [
                     pl[k].range() - r,
-                    crate::variational::wrap_angle(pl[k].azimuth() - y.atan2(x)),
+                    argus_sensors::wrap_angle(pl[k].azimuth() - y.atan2(x)),
                 ];
                 (e, [jpj[(0, 0)], jpj[(1, 1)]])
             };

@@ -2,9 +2,10 @@
 
 use argus_core_math::Matrix;
 use argus_filters::GaussianFilter;
+use argus_sensors::PolarMeasurement;
 
 use crate::error::{check_forgetting, check_positive};
-use crate::{Imm, ImmError, ImmEstimate, ImmUpdate, NoiseVariances, PlotConversion, PolarPlot};
+use crate::{Imm, ImmError, ImmEstimate, ImmUpdate, NoiseVariances, PlotConversion};
 
 /// The state of a [`VariationalNoiseImm`]: the IMM estimate and inverse-gamma statistics
 /// `(α, β_r, β_θ)` of the range and azimuth variances, `σ̂² = β / α`.
@@ -124,7 +125,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> VariationalNoiseImm<F
         &self,
         est: &VariationalEstimate<N, R>,
         dt: f64,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         conversion: &C,
     ) -> Result<(VariationalEstimate<N, R>, ImmUpdate<N, R>), ImmError> {
         let rho = self.forgetting;
@@ -150,7 +151,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> VariationalNoiseImm<F
             let J = Matrix::<2, 2>::new(c, s, -s / rng, c / rng);
             let JPJ = J * conversion.position_cov(post.cov()) * J.transpose();
             let e_r = plot.range() - rng;
-            let e_t = wrap_angle(plot.azimuth() - p[1].atan2(p[0]));
+            let e_t = argus_sensors::wrap_angle(plot.azimuth() - p[1].atan2(p[0]));
             beta = [
                 rho * est.beta[0] + 0.5 * (e_r * e_r + JPJ[(0, 0)]),
                 rho * est.beta[1] + 0.5 * (e_t * e_t + JPJ[(1, 1)]),
@@ -168,16 +169,5 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> VariationalNoiseImm<F
         };
         next.variances()?;
         Ok((next, upd))
-    }
-}
-
-/// Wraps an angle to `(−π, π]`.
-pub(crate) fn wrap_angle(a: f64) -> f64 {
-    let two_pi = 2.0 * std::f64::consts::PI;
-    let w = a - two_pi * (a / two_pi).round();
-    if w <= -std::f64::consts::PI {
-        w + two_pi
-    } else {
-        w
     }
 }

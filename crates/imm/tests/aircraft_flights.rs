@@ -16,10 +16,10 @@ use argus_imm::{
     AircraftImm, AircraftRadar, AircraftTuning, Augmentation, Imm, ImmEstimate, MarkovMatrix,
 };
 use argus_motion_models::{CoordinatedTurn, CoordinatedTurnRate, Cv2D, PlanarModel};
-use argus_sensors::{CartesianPosition, ConversionMethod, RadarNoise, convert_polar};
+use argus_sensors::{CartesianPosition, ConversionMethod, Measurement, RadarNoise, convert_polar};
 use argus_sim::{
-    KinematicState, Measurement, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory,
-    Truth, generate_plots, run_rng,
+    KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
+    generate_plots, run_rng,
 };
 use rand::RngExt;
 
@@ -111,12 +111,15 @@ fn plots(traj: &Trajectory, run: u64) -> Vec<(f64, Vector<2>, Vector<4>)> {
     generate_plots(&truth, &[radar], &mut rng)
         .unwrap()
         .iter()
-        .filter_map(|p| match p.measurement {
-            Measurement::Polar { range, azimuth } => Some((
-                p.time,
-                Vector::<2>::new(range, azimuth),
-                traj.state_at(p.time).unwrap().state_2d(),
-            )),
+        .filter_map(|p| match p.plot.measurement() {
+            Measurement::Polar(m) => {
+                let (range, azimuth) = (m.range(), m.azimuth());
+                Some((
+                    p.plot.time(),
+                    Vector::<2>::new(range, azimuth),
+                    traj.state_at(p.plot.time()).unwrap().state_2d(),
+                ))
+            }
             _ => None,
         })
         .collect()

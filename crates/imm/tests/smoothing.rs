@@ -9,13 +9,13 @@ use argus_core_math::{Gaussian, Matrix, Vector, anees_interval};
 use argus_filters::{Kf, RtsTrack, SmoothError, two_point_cv2};
 use argus_imm::{
     Imm, ImmEstimate, ImmSmoothError, ImmTrack, MarkovMatrix, NoiseVariances, PairWeights,
-    PlotConversion, PolarPlot, UnbiasedConversion, unbiased_conversion,
+    PlotConversion, UnbiasedConversion, unbiased_conversion,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
-use argus_sensors::CartesianPosition;
+use argus_sensors::{CartesianPosition, Measurement, PolarMeasurement};
 use argus_sim::{
-    KinematicState, Measurement, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory,
-    Truth, generate_plots, run_rng,
+    KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
+    generate_plots, run_rng,
 };
 
 #[test]
@@ -132,13 +132,17 @@ fn gimpo_campaign(weights: PairWeights) -> f64 {
     let mut acc: Vec<[f64; 5]> = Vec::new();
     for run in 0..runs {
         let mut rng = run_rng(0, run);
-        let plots: Vec<(f64, PolarPlot)> =
+        let plots: Vec<(f64, PolarMeasurement)> =
             generate_plots(&truth, std::slice::from_ref(&radar), &mut rng)
                 .unwrap()
                 .iter()
-                .filter_map(|pl| match pl.measurement {
-                    Measurement::Polar { range, azimuth } => {
-                        PolarPlot::new(range, azimuth).ok().map(|x| (pl.time, x))
+                .filter_map(|pl| match pl.plot.measurement() {
+                    Measurement::Polar(m) => {
+                        let (range, azimuth) = (m.range(), m.azimuth());
+
+                        PolarMeasurement::new(range, azimuth)
+                            .ok()
+                            .map(|x| (pl.plot.time(), x))
                     }
                     _ => None,
                 })

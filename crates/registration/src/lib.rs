@@ -53,6 +53,6 @@ pub use error::RegistrationError;
 pub use estimator::{Backend, BiasEstimator, PseudoMeasurement, STACK_MAX_SENSORS};
 pub use exx::{ExxCollector, exx_pseudo_measurement};
 pub use local::{BiasedLocalFilter, BiasedTrack, position_matrix};
-pub use polar::{ConvertedPlot, Linearization, PolarPlot, PolarSensor};
+pub use polar::{ConvertedPlot, Linearization, PolarSensor};
 pub use pseudo::pseudo_measurement;
 pub use registrar::{Initiation, PlotOutcome, Registrar, RegistrarConfig};

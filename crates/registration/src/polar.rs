@@ -3,25 +3,13 @@
 //! converted once to Cartesian with its noise `R` and bias Jacobian `B C`, evaluated
 //! at a chosen [`Linearization`] point.
 
-use argus_core_math::{
-    Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector, symmetrize,
-};
+use argus_core_math::{Matrix, Vector, check_finite_matrix, check_finite_vector, symmetrize};
 use argus_sensors::{
-    ConversionMethod, MeasurementModel, Polar2D, PolarBias, RadarNoise, Sigmas, bias_regressor,
-    convert_polar,
+    CartesianMeasurement, ConversionMethod, MeasurementModel, Polar2D, PolarBias, PolarMeasurement,
+    RadarNoise, Sigmas, bias_regressor, convert_polar,
 };
 
 use crate::error::{RegistrationError, finite, positive};
-
-/// A plot in the sensor's polar frame: range (m) and azimuth (rad, from +x
-/// counter-clockwise), relative to the sensor's position.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PolarPlot {
-    /// Range (m).
-    pub range: f64,
-    /// Azimuth (rad).
-    pub azimuth: f64,
-}
 
 /// Where `B`, `C` and `R` of eqs (3), (4), (6) are evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -46,14 +34,17 @@ pub struct PolarSensor {
     radar: Polar2D<4>,
 }
 
-/// A plot converted to Cartesian: the position `z` (m, global frame), its noise
-/// covariance `R` (eq (6)) and the bias Jacobian `B C` (eqs (3), (4)) that maps the
-/// sensor's bias into it, at time `time`.
+/// A plot converted to Cartesian: the position `z` (m, global frame) with its noise
+/// covariance `R` (eq (6)) — the vocabulary's [`CartesianMeasurement`] — and the bias
+/// Jacobian `B C` (eqs (3), (4)) that maps the sensor's bias into it, at time `time`.
+///
+/// Not an [`argus_sensors::Plot`]: it is what registration makes of a raw polar plot,
+/// linearised at a chosen point, and it carries `B C`, which no raw plot has (its sensor
+/// is the registrar's index, not a `SensorId`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ConvertedPlot {
     time: f64,
-    z: Vector<2>,
-    noise: Matrix<2, 2>,
+    measurement: CartesianMeasurement<2>,
     bias_jacobian: Matrix<2, 4>,
 }
 
@@ -61,8 +52,9 @@ impl ConvertedPlot {
     /// A converted plot from its parts (for plots linearised elsewhere).
     ///
     /// # Errors
-    /// [`RegistrationError::NonFinite`] / [`RegistrationError::Math`] for non-finite
-    /// values or a noise covariance that is not symmetric positive definite.
+    /// [`RegistrationError::NonFinite`] / [`RegistrationError::Math`] for a non-finite
+    /// time or `B C`, [`RegistrationError::Sensor`] for a non-finite position or a noise
+    /// covariance that is not symmetric positive definite.
     pub fn new(
         time: f64,
         z: Vector<2>,
@@ -70,13 +62,10 @@ impl ConvertedPlot {
         bias_jacobian: Matrix<2, 4>,
     ) -> Result<Self, RegistrationError> {
         finite("plot time", time)?;
-        check_finite_vector(&z, "plot position")?;
         check_finite_matrix(&bias_jacobian, "bias Jacobian B C")?;
-        SpdFactor::new(&noise, "plot noise covariance R")?;
         Ok(Self {
             time,
-            z,
-            noise,
+            measurement: CartesianMeasurement::new(z, noise)?,
             bias_jacobian,
         })
     }
@@ -90,13 +79,19 @@ impl ConvertedPlot {
     /// The Cartesian position `z^m` (m).
     #[must_use]
     pub fn z(&self) -> &Vector<2> {
-        &self.z
+        self.measurement.position()
     }
 
     /// The converted noise covariance `R^m = B diag(σr², σθ²) Bᵀ`.
     #[must_use]
     pub fn noise(&self) -> &Matrix<2, 2> {
-        &self.noise
+        self.measurement.covariance()
+    }
+
+    /// The position and its noise covariance as the vocabulary's Cartesian measurement.
+    #[must_use]
+    pub fn measurement(&self) -> &CartesianMeasurement<2> {
+        &self.measurement
     }
 
     /// The bias Jacobian `B C`.
@@ -150,13 +145,12 @@ impl PolarSensor {
 
     /// Range and azimuth of a global position relative to the sensor (azimuth in (−π, π]),
     /// by [`Polar2D`]'s measurement function.
-    #[must_use]
-    pub fn polar_of(&self, p: &Vector<2>) -> PolarPlot {
+    ///
+    /// # Errors
+    /// [`RegistrationError::Sensor`] for a non-finite position.
+    pub fn polar_of(&self, p: &Vector<2>) -> Result<PolarMeasurement, RegistrationError> {
         let z = self.radar.predict(&Vector::<4>::new(p[0], 0.0, p[1], 0.0));
-        PolarPlot {
-            range: z[0],
-            azimuth: z[1],
-        }
+        Ok(PolarMeasurement::new(z[0], z[1])?)
     }
 
     /// The noise standard deviations at `range`.
@@ -171,21 +165,22 @@ impl PolarSensor {
     /// supplied by the caller.
     ///
     /// # Errors
-    /// [`RegistrationError::Sensor`] for a non-finite position.
+    /// [`RegistrationError::Sensor`] for a non-finite position, or a noisy range below
+    /// zero (noise larger than the range: no radar reports it).
     pub fn biased_plot(
         &self,
         p: &Vector<2>,
         bias: &PolarBias,
         n_r: f64,
         n_theta: f64,
-    ) -> Result<PolarPlot, RegistrationError> {
-        let t = self.polar_of(p);
-        let (r, a) = bias.apply(t.range, t.azimuth)?;
-        let s = self.sigmas(t.range);
-        Ok(PolarPlot {
-            range: r + s.range() * n_r,
-            azimuth: a + s.azimuth() * n_theta,
-        })
+    ) -> Result<PolarMeasurement, RegistrationError> {
+        let t = self.polar_of(p)?;
+        let (r, a) = bias.apply(t.range(), t.azimuth())?;
+        let s = self.sigmas(t.range());
+        Ok(PolarMeasurement::new(
+            r + s.range() * n_r,
+            a + s.azimuth() * n_theta,
+        )?)
     }
 
     /// Converts a polar plot taken at `time`: `z` is the plot in Cartesian, and `R`, `B C`
@@ -195,25 +190,23 @@ impl PolarSensor {
     /// `B C` = [`bias_regressor`] (eqs (3), (4)).
     ///
     /// # Errors
-    /// [`RegistrationError::NonFinite`] for a non-finite plot or point,
-    /// [`RegistrationError::InvalidParameter`] for a non-positive range,
+    /// [`RegistrationError::NonFinite`] for a non-finite point,
+    /// [`RegistrationError::InvalidParameter`] for a zero range,
     /// [`RegistrationError::Sensor`] for a linearisation point on the sensor and
     /// [`RegistrationError::Math`] when `R` is singular.
     pub fn convert(
         &self,
         time: f64,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
         at: Option<&Vector<2>>,
     ) -> Result<ConvertedPlot, RegistrationError> {
-        finite("plot range", plot.range)?;
-        finite("plot azimuth", plot.azimuth)?;
-        positive("plot range", plot.range)?;
+        positive("plot range", plot.range())?;
         let s = |r: f64| self.sigmas(r);
         let at_plot = {
-            let sp = s(plot.range);
+            let sp = s(plot.range());
             convert_polar(
-                plot.range,
-                plot.azimuth,
+                plot.range(),
+                plot.azimuth(),
                 sp.range(),
                 sp.azimuth(),
                 ConversionMethod::Linearized,
@@ -223,11 +216,11 @@ impl PolarSensor {
             None => (*plot, at_plot.covariance),
             Some(p) => {
                 check_finite_vector(p, "linearisation point")?;
-                let lin = self.polar_of(p);
-                let sl = s(lin.range);
+                let lin = self.polar_of(p)?;
+                let sl = s(lin.range());
                 let c = convert_polar(
-                    lin.range,
-                    lin.azimuth,
+                    lin.range(),
+                    lin.azimuth(),
                     sl.range(),
                     sl.azimuth(),
                     ConversionMethod::Linearized,
@@ -239,7 +232,7 @@ impl PolarSensor {
             time,
             self.position() + at_plot.position,
             symmetrize(&noise),
-            bias_regressor(lin.range, lin.azimuth),
+            bias_regressor(lin.range(), lin.azimuth()),
         )
     }
 }
@@ -285,19 +278,14 @@ mod tests {
             })
         ));
         let s = PolarSensor::new(Vector::<2>::zeros(), 10.0, 1e-3).unwrap();
-        let bad = PolarPlot {
-            range: -1.0,
-            azimuth: 0.0,
-        };
-        assert!(s.convert(0.0, &bad, None).is_err());
-        let nan = PolarPlot {
-            range: 1.0,
-            azimuth: f64::NAN,
-        };
+        // A negative or non-finite plot cannot be built; a zero range cannot be converted.
+        assert!(PolarMeasurement::new(-1.0, 0.0).is_err());
+        assert!(PolarMeasurement::new(1.0, f64::NAN).is_err());
+        let zero = PolarMeasurement::new(0.0, 0.3).unwrap();
         assert!(matches!(
-            s.convert(0.0, &nan, None),
-            Err(RegistrationError::NonFinite {
-                what: "plot azimuth",
+            s.convert(0.0, &zero, None),
+            Err(RegistrationError::InvalidParameter {
+                what: "plot range",
                 ..
             })
         ));
@@ -312,10 +300,7 @@ mod tests {
         // B diag(σr², σθ²) Bᵀ is a rotation of diag(σr², r² σθ²): eigenvalues σr², (r σθ)²,
         // here at the linearisation point (r = 20 km, θ = 1.1 rad), not at the plot.
         let s = PolarSensor::new(Vector::<2>::zeros(), 10.0, 1e-3).unwrap();
-        let plot = PolarPlot {
-            range: 5_000.0,
-            azimuth: 0.3,
-        };
+        let plot = PolarMeasurement::new(5_000.0, 0.3).unwrap();
         let at = Vector::<2>::new(20_000.0 * 1.1_f64.cos(), 20_000.0 * 1.1_f64.sin());
         let c = s.convert(0.0, &plot, Some(&at)).unwrap();
         let r = c.noise();

@@ -10,8 +10,9 @@ use crate::error::{RegistrationError, finite};
 use crate::estimator::BiasEstimator;
 use crate::exx::ExxCollector;
 use crate::local::{BiasedLocalFilter, BiasedTrack, position_matrix};
-use crate::polar::{ConvertedPlot, Linearization, PolarPlot, PolarSensor};
+use crate::polar::{ConvertedPlot, Linearization, PolarSensor};
 use crate::pseudo::pseudo_measurement;
+use argus_sensors::PolarMeasurement;
 
 /// How local tracks start.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -199,7 +200,7 @@ impl Registrar {
         s: usize,
         t: usize,
         time: f64,
-        plot: &PolarPlot,
+        plot: &PolarMeasurement,
     ) -> Result<PlotOutcome, RegistrationError> {
         let k = self.index(s, t)?;
         finite("plot time", time)?;

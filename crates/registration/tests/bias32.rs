@@ -128,7 +128,7 @@ fn covariance_analysis(cfg: &ScenarioConfig) -> Moments {
             let Fi = (Matrix::<4, 4>::identity() - Ki * H) * filter.transition(time - own.time());
             let w = setup
                 .sensor
-                .convert(time, &setup.sensor.polar_of(&p), None)
+                .convert(time, &setup.sensor.polar_of(&p).unwrap(), None)
                 .unwrap();
             let Rw = *w.noise();
             // The pseudo-measurement against the other sensors' tracks and the bias gain.

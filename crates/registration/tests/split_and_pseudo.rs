@@ -7,17 +7,19 @@ use argus_core_math::faer::Mat;
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_registration::{
     BiasEstimator, BiasedLocalFilter, BiasedTrack, ConvertedPlot, Initiation, Linearization,
-    PolarPlot, PolarSensor, Registrar, RegistrarConfig, RegistrationError, exx_pseudo_measurement,
+    PolarSensor, Registrar, RegistrarConfig, RegistrationError, exx_pseudo_measurement,
     position_matrix, pseudo_measurement,
 };
-use argus_sensors::PolarBias;
+use argus_sensors::{PolarBias, PolarMeasurement};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
 /// `B C` and `R` of `sensor` at the global position `p` (the noise-free plot of `p`).
 fn linearised_at(sensor: &PolarSensor, p: &Vector<2>) -> (Matrix<2, 4>, Matrix<2, 2>) {
-    let c = sensor.convert(0.0, &sensor.polar_of(p), None).unwrap();
+    let c = sensor
+        .convert(0.0, &sensor.polar_of(p).unwrap(), None)
+        .unwrap();
     (*c.bias_jacobian(), *c.noise())
 }
 
@@ -251,7 +253,11 @@ fn registrar_rejects_bad_input_and_keeps_state() {
         .is_err()
     );
     let mut reg = Registrar::new(cfg).unwrap();
-    let plot = |t: f64, s: usize| sensors[s].polar_of(&(position_matrix() * truth(t)));
+    let plot = |t: f64, s: usize| {
+        sensors[s]
+            .polar_of(&(position_matrix() * truth(t)))
+            .unwrap()
+    };
     for k in 0..4 {
         let t = f64::from(k);
         reg.process(0, 0, t, &plot(t, 0)).unwrap();
@@ -271,16 +277,8 @@ fn registrar_rejects_bad_input_and_keeps_state() {
         Err(RegistrationError::TimeNotIncreasing { .. })
     ));
     assert!(
-        reg.process(
-            0,
-            0,
-            5.0,
-            &PolarPlot {
-                range: f64::NAN,
-                azimuth: 0.0
-            }
-        )
-        .is_err()
+        reg.process(0, 0, 5.0, &PolarMeasurement::new(0.0, 0.0).unwrap())
+            .is_err()
     );
     assert!(reg.process(0, 0, f64::INFINITY, &plot(5.0, 0)).is_err());
     assert_eq!(*reg.track(0, 0).unwrap(), before_track);

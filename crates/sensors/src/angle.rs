@@ -4,18 +4,28 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-/// Wraps an angle to `(−π, π]`.
+/// Wraps an angle to `(−π, π]`: the one angle wrap of the workspace.
 ///
-/// `wrap_angle(π) = π`, `wrap_angle(−π) = π`, `wrap_angle(3π/2) = −π/2`. A
-/// non-finite input gives NaN (there is no meaningful wrapped value); the
-/// filters reject non-finite residuals.
+/// The result is `angle − k·τ` for the integer `k` that puts it in `(−π, π]`, where
+/// `τ` is `std::f64::consts::TAU`, computed without rounding: `%` is exact, and the one
+/// correction by `±τ` is exact too (Sterbenz: both operands lie within a factor of two).
+/// So an angle already in `(−π, π]` comes back bit for bit (a tiny `−1e-300` stays
+/// `−1e-300`, `−0.0` stays `−0.0`), `wrap_angle(π) = π`, `wrap_angle(−π) = π`, every
+/// odd multiple of `π` gives `π` and every even one `±0`. A huge angle is reduced
+/// exactly modulo the `f64` `τ` (which is not exactly 2π, so the wrap of `1e300`
+/// has no physical meaning, but it lies in range). A NaN or infinite input gives NaN
+/// (there is no meaningful wrapped value); the filters reject non-finite residuals.
 #[must_use]
+#[inline]
 pub fn wrap_angle(angle: f64) -> f64 {
-    // π − ((π − a) mod 2π) lies in (−π, π]; rem_euclid may round up to exactly
-    // 2π for a tiny negative argument, which the guard maps back to π.
-    let r = (PI - angle).rem_euclid(TAU);
-    let w = PI - r;
-    if w <= -PI { w + TAU } else { w }
+    let r = angle % TAU;
+    if r > PI {
+        r - TAU
+    } else if r <= -PI {
+        r + TAU
+    } else {
+        r
+    }
 }
 
 /// Converts an azimuth in the radar convention (clockwise from north, i.e. from
@@ -80,8 +90,22 @@ mod tests {
         assert!((wrap_angle(1.5 * PI) + 0.5 * PI).abs() < 1e-15);
         assert!((wrap_angle(-1.5 * PI) - 0.5 * PI).abs() < 1e-15);
         assert!((wrap_angle(7.0 * TAU + 0.25) - 0.25).abs() < 1e-12);
-        assert!(wrap_angle(-1e-300) <= 0.0 && wrap_angle(-1e-300) > -1e-299);
+        // In range: returned unchanged, bit for bit.
+        for a in [-1e-300, 1e-300, 0.1, -0.1, 3.0, -3.0, -0.0] {
+            assert_eq!(wrap_angle(a).to_bits(), f64::to_bits(a));
+        }
+        // Multiples of π: odd ones give π, even ones ±0.
+        for k in [-7.0, -3.0, -1.0, 1.0, 3.0, 7.0] {
+            assert!((wrap_angle(k * PI) - PI).abs() < 1e-12);
+        }
+        assert!(wrap_angle(TAU).abs() < 1e-15 && wrap_angle(-4.0 * TAU).abs() < 1e-15);
+        // Huge values stay in range (reduced modulo the f64 TAU).
+        for a in [1e300, -1e300, f64::MAX, 5e15] {
+            let w = wrap_angle(a);
+            assert!(w > -PI && w <= PI, "{a} -> {w}");
+        }
         assert!(wrap_angle(f64::INFINITY).is_nan());
+        assert!(wrap_angle(f64::NAN).is_nan());
         for k in -2000..2000 {
             let w = wrap_angle(f64::from(k) * 0.01);
             assert!(w > -PI && w <= PI);

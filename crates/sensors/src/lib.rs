@@ -17,6 +17,11 @@
 //! - Bias: [`PolarBias`] (seed 004 eqs (1)–(4)) and its linearised Cartesian form.
 //! - Converted measurements: [`convert_polar`], [`convert_spherical`] with a
 //!   [`ConversionMethod`] (linearised, debiased, unbiased).
+//! - The workspace's plot vocabulary: a [`Plot`] is a time, a [`SensorId`], a
+//!   [`Measurement`] ([`PolarMeasurement`], [`SphericalMeasurement`], or a
+//!   [`CartesianMeasurement`] in 2-D or 3-D with its covariance) and an optional
+//!   amplitude, each checked when built. [`wrap_angle`] is the one angle wrap (exact,
+//!   to `(−π, π]`).
 //!
 //! # Example
 //! ```
@@ -50,7 +55,9 @@ mod cartesian;
 mod conversion;
 mod error;
 mod noise;
+mod plot;
 mod polar;
+mod sensor_id;
 mod spherical;
 
 pub use angle::{RadarAzimuth, math_to_radar_azimuth, radar_to_math_azimuth, wrap_angle};
@@ -63,7 +70,9 @@ pub use conversion::{
 };
 pub use error::SensorError;
 pub use noise::{LinkBudget, RadarNoise, Sigmas, SnrNoise, db_to_linear, linear_to_db};
+pub use plot::{CartesianMeasurement, Measurement, Plot, PolarMeasurement, SphericalMeasurement};
 pub use polar::Polar2D;
+pub use sensor_id::SensorId;
 pub use spherical::Spherical3D;
 
 use argus_core_math::{Matrix, Vector};

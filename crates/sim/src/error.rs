@@ -51,6 +51,9 @@ pub enum SimError {
         /// One past the last run index.
         end: u64,
     },
+    /// A sensor model or a plot was rejected by `argus-sensors` (a non-finite value).
+    #[error(transparent)]
+    Sensor(#[from] argus_sensors::SensorError),
     /// A core-math operation failed (chi-square quantile domain …).
     #[error(transparent)]
     Math(#[from] argus_core_math::MathError),

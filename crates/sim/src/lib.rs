@@ -5,8 +5,11 @@
 //!   several targets.
 //! - [`SensorSpec`] and [`generate_plots`]: each sensor's plots at its own times
 //!   ([`Schedule::Periodic`] or a [`Schedule::RotatingBeam`] crossing the targets), with
-//!   noise, bias, detection probability or Swerling I amplitudes, and Poisson clutter;
-//!   every [`Plot`] keeps its true [`Origin`] for scoring.
+//!   noise, bias, detection probability or Swerling I amplitudes, and Poisson clutter.
+//!   The noise-free value is the sensor's `argus-sensors` measurement model (`h` of
+//!   [`argus_sensors::Polar2D`], [`argus_sensors::Spherical3D`] or
+//!   [`argus_sensors::CartesianPosition`]); each plot is an [`argus_sensors::Plot`],
+//!   labelled with its true [`Origin`] for scoring ([`LabelledPlot`]).
 //! - [`monte_carlo`]: runs in parallel with rayon, each seeded by [`run_rng`] from
 //!   (base seed, run index), results in run order whatever the thread count.
 //! - [`Metrics`]: RMSE per step, ANEES/ANIS with 95 % intervals, warm-up-excluded
@@ -20,10 +23,11 @@
 //! # Example
 //! ```
 //! use argus_sim::{
-//!     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
+//!     KinematicState, Schedule, Segment, SensorKind, SensorSpec, Trajectory, Truth,
 //!     generate_plots, run_rng,
 //! };
 //! use argus_core_math::Vector;
+//! use argus_sensors::SensorId;
 //!
 //! let mut truth = Truth::new();
 //! truth.add(Trajectory::new(
@@ -51,16 +55,14 @@ mod sensor;
 mod track_metrics;
 mod truth;
 
+/// The workspace's sensor id (defined in `argus-sensors`), re-exported for scenarios.
+pub use argus_sensors::SensorId;
 pub use error::SimError;
 pub use metrics::{Interval, Metrics, RunRecord, StepMetrics, StepRecord};
 pub use montecarlo::{monte_carlo, run_rng};
 pub use ospa::{Gospa, GospaValue, Ospa, OspaValue};
-pub use plots::{
-    Measurement, Origin, Plot, beam_crossings, generate_plots, true_measurement, wrap_angle,
-};
-pub use sensor::{
-    Bias, Clutter, ClutterRegion, Detection, Schedule, SensorId, SensorKind, SensorSpec,
-};
+pub use plots::{LabelledPlot, Origin, beam_crossings, generate_plots};
+pub use sensor::{Bias, Clutter, ClutterRegion, Detection, Schedule, SensorKind, SensorSpec};
 pub use track_metrics::{TrackScan, TrackStatistics};
 pub use truth::{KinematicState, Segment, TargetId, Trajectory, Truth};
 

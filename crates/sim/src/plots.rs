@@ -3,67 +3,17 @@
 use std::f64::consts::{PI, TAU};
 
 use argus_core_math::Vector;
+use argus_sensors::{
+    CartesianMeasurement, Measurement, Plot, PolarMeasurement, SensorId, SphericalMeasurement,
+    wrap_angle,
+};
 use rand::Rng;
 use rand::RngExt;
 use rand_distr::{Distribution, Poisson, StandardNormal};
 
-use crate::SensorId;
 use crate::error::SimError;
 use crate::sensor::{ClutterRegion, Detection, Schedule, SensorKind, SensorSpec};
-use crate::truth::{KinematicState, TargetId, Trajectory, Truth};
-
-/// A measured value, in the sensor's own coordinates.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
-pub enum Measurement {
-    /// Range (m) and azimuth (rad, `(−π, π]`) relative to the sensor.
-    Polar {
-        /// Range (m).
-        range: f64,
-        /// Azimuth (rad).
-        azimuth: f64,
-    },
-    /// Range, azimuth and elevation relative to the sensor.
-    Spherical {
-        /// Range (m).
-        range: f64,
-        /// Azimuth (rad).
-        azimuth: f64,
-        /// Elevation (rad).
-        elevation: f64,
-    },
-    /// A 2-D position report in global coordinates with its covariance `[r_xx, r_xy, r_yy]`.
-    Cartesian2d {
-        /// `[x, y]` (m).
-        position: [f64; 2],
-        /// `[r_xx, r_xy, r_yy]` (m²).
-        cov: [f64; 3],
-    },
-    /// A 3-D position report with its covariance `[r_xx, r_xy, r_xz, r_yy, r_yz, r_zz]`.
-    Cartesian3d {
-        /// `[x, y, z]` (m).
-        position: [f64; 3],
-        /// Upper triangle, row by row (m²).
-        cov: [f64; 6],
-    },
-}
-
-impl Measurement {
-    /// The measured components (range, azimuth[, elevation] or x, y[, z]) and their count.
-    #[must_use]
-    pub fn components(&self) -> ([f64; 3], usize) {
-        match *self {
-            Self::Polar { range, azimuth } => ([range, azimuth, 0.0], 2),
-            Self::Spherical {
-                range,
-                azimuth,
-                elevation,
-            } => ([range, azimuth, elevation], 3),
-            Self::Cartesian2d { position, .. } => ([position[0], position[1], 0.0], 2),
-            Self::Cartesian3d { position, .. } => (position, 3),
-        }
-    }
-}
+use crate::truth::{TargetId, Trajectory, Truth};
 
 /// The true origin of a plot, kept for scoring; never shown to a filter.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -74,149 +24,119 @@ pub enum Origin {
     Clutter,
 }
 
-/// One plot (detection report).
+/// A simulated plot: the plot a sensor reports ([`argus_sensors::Plot`]) and, for
+/// scoring only, where it truly came from.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Plot {
-    /// Time (s).
-    pub time: f64,
-    /// The sensor that made it.
-    pub sensor: SensorId,
-    /// The measured value.
-    pub measurement: Measurement,
-    /// Normalised amplitude when the sensor's detection model has amplitudes.
-    pub amplitude: Option<f64>,
+pub struct LabelledPlot {
+    /// The plot as a tracker sees it.
+    pub plot: Plot,
     /// Where it truly came from.
     pub origin: Origin,
-}
-
-/// Wraps an angle to `(−π, π]`.
-#[must_use]
-pub fn wrap_angle(a: f64) -> f64 {
-    let w = a.rem_euclid(TAU);
-    if w > PI { w - TAU } else { w }
-}
-
-/// The noise-free measurement of `state` by `sensor` (no bias, no noise).
-#[must_use]
-pub fn true_measurement(sensor: &SensorSpec, state: &KinematicState) -> Measurement {
-    let d = state.position - sensor.position;
-    let horiz = d.x.hypot(d.y);
-    match sensor.kind {
-        SensorKind::Polar { .. } => Measurement::Polar {
-            range: horiz,
-            azimuth: d.y.atan2(d.x),
-        },
-        SensorKind::Spherical { .. } => Measurement::Spherical {
-            range: d.norm(),
-            azimuth: d.y.atan2(d.x),
-            elevation: d.z.atan2(horiz),
-        },
-        SensorKind::Cartesian2d { cov } => Measurement::Cartesian2d {
-            position: [state.position.x, state.position.y],
-            cov: [cov[(0, 0)], cov[(0, 1)], cov[(1, 1)]],
-        },
-        SensorKind::Cartesian3d { cov } => Measurement::Cartesian3d {
-            position: [state.position.x, state.position.y, state.position.z],
-            cov: [
-                cov[(0, 0)],
-                cov[(0, 1)],
-                cov[(0, 2)],
-                cov[(1, 1)],
-                cov[(1, 2)],
-                cov[(2, 2)],
-            ],
-        },
-    }
 }
 
 fn normal<R: Rng + ?Sized>(rng: &mut R) -> f64 {
     StandardNormal.sample(rng)
 }
 
-/// Adds bias and white noise to a noise-free measurement.
-fn corrupt<R: Rng + ?Sized>(sensor: &SensorSpec, m: Measurement, rng: &mut R) -> Measurement {
-    let b = &sensor.bias;
-    match (sensor.kind, m) {
-        (
-            SensorKind::Polar {
-                sigma_range,
-                sigma_azimuth,
-            },
-            Measurement::Polar { range, azimuth },
-        ) => Measurement::Polar {
-            range: (1.0 + b.range_scale) * range + b.range_offset + sigma_range * normal(rng),
-            azimuth: wrap_angle(
-                (1.0 + b.azimuth_scale) * azimuth + b.azimuth_offset + sigma_azimuth * normal(rng),
-            ),
-        },
-        (
-            SensorKind::Spherical {
-                sigma_range,
-                sigma_azimuth,
-                sigma_elevation,
-            },
-            Measurement::Spherical {
-                range,
-                azimuth,
-                elevation,
-            },
-        ) => Measurement::Spherical {
-            range: (1.0 + b.range_scale) * range + b.range_offset + sigma_range * normal(rng),
-            azimuth: wrap_angle(
-                (1.0 + b.azimuth_scale) * azimuth + b.azimuth_offset + sigma_azimuth * normal(rng),
-            ),
-            elevation: elevation + b.elevation_offset + sigma_elevation * normal(rng),
-        },
-        (_, Measurement::Cartesian2d { position, cov }) => {
-            let n = Vector::<3>::new(normal(rng), normal(rng), 0.0);
-            let e = sensor.chol * n;
-            Measurement::Cartesian2d {
-                position: [position[0] + e.x, position[1] + e.y],
-                cov,
-            }
-        }
-        (_, Measurement::Cartesian3d { position, cov }) => {
-            let n = Vector::<3>::new(normal(rng), normal(rng), normal(rng));
-            let e = sensor.chol * n;
-            Measurement::Cartesian3d {
-                position: [position[0] + e.x, position[1] + e.y, position[2] + e.z],
-                cov,
-            }
-        }
-        // Unreachable by construction (the measurement comes from the same sensor);
-        // returned unchanged rather than panicking.
-        (_, m) => m,
+/// A polar or spherical measurement, or `None` for a range below zero (noise larger than
+/// the range, or a clutter region reaching behind the sensor): no sensor reports one, so
+/// the plot is dropped (its random draws are made all the same).
+fn radar(
+    range: f64,
+    azimuth: f64,
+    elevation: Option<f64>,
+) -> Result<Option<Measurement>, SimError> {
+    if range < 0.0 {
+        return Ok(None);
     }
+    Ok(Some(match elevation {
+        None => PolarMeasurement::new(range, azimuth)?.into(),
+        Some(e) => SphericalMeasurement::new(range, azimuth, e)?.into(),
+    }))
 }
 
-/// Builds a measurement of the sensor's kind from raw components (clutter).
-fn from_components(sensor: &SensorSpec, c: [f64; 3]) -> Measurement {
-    match sensor.kind {
-        SensorKind::Polar { .. } => Measurement::Polar {
-            range: c[0],
-            azimuth: wrap_angle(c[1]),
-        },
-        SensorKind::Spherical { .. } => Measurement::Spherical {
-            range: c[0],
-            azimuth: wrap_angle(c[1]),
-            elevation: c[2],
-        },
-        SensorKind::Cartesian2d { cov } => Measurement::Cartesian2d {
-            position: [c[0], c[1]],
-            cov: [cov[(0, 0)], cov[(0, 1)], cov[(1, 1)]],
-        },
-        SensorKind::Cartesian3d { cov } => Measurement::Cartesian3d {
-            position: c,
-            cov: [
-                cov[(0, 0)],
-                cov[(0, 1)],
-                cov[(0, 2)],
-                cov[(1, 1)],
-                cov[(1, 2)],
-                cov[(2, 2)],
-            ],
-        },
+/// Adds bias and white noise to the noise-free measurement `clean` (components as
+/// [`crate::sensor::Model::h`] gives them); `None` for a range below zero.
+///
+/// # Errors
+/// [`SimError::Sensor`] for a non-finite value.
+fn corrupt<R: Rng + ?Sized>(
+    sensor: &SensorSpec,
+    clean: [f64; 3],
+    rng: &mut R,
+) -> Result<Option<Measurement>, SimError> {
+    let b = &sensor.bias;
+    let [c0, c1, c2] = clean;
+    Ok(Some(match sensor.kind {
+        SensorKind::Polar {
+            sigma_range,
+            sigma_azimuth,
+        } => {
+            let range = (1.0 + b.range_scale) * c0 + b.range_offset + sigma_range * normal(rng);
+            let azimuth = wrap_angle(
+                (1.0 + b.azimuth_scale) * c1 + b.azimuth_offset + sigma_azimuth * normal(rng),
+            );
+            return radar(range, azimuth, None);
+        }
+        SensorKind::Spherical {
+            sigma_range,
+            sigma_azimuth,
+            sigma_elevation,
+        } => {
+            let range = (1.0 + b.range_scale) * c0 + b.range_offset + sigma_range * normal(rng);
+            let azimuth = wrap_angle(
+                (1.0 + b.azimuth_scale) * c1 + b.azimuth_offset + sigma_azimuth * normal(rng),
+            );
+            let elevation = c2 + b.elevation_offset + sigma_elevation * normal(rng);
+            return radar(range, azimuth, Some(elevation));
+        }
+        SensorKind::Cartesian2d { cov } => {
+            let n = Vector::<3>::new(normal(rng), normal(rng), 0.0);
+            let e = sensor.chol * n;
+            CartesianMeasurement::new(Vector::<2>::new(c0 + e.x, c1 + e.y), cov)?.into()
+        }
+        SensorKind::Cartesian3d { cov } => {
+            let n = Vector::<3>::new(normal(rng), normal(rng), normal(rng));
+            let e = sensor.chol * n;
+            CartesianMeasurement::new(Vector::<3>::new(c0 + e.x, c1 + e.y, c2 + e.z), cov)?.into()
+        }
+    }))
+}
+
+/// Builds a measurement of the sensor's kind from raw components (clutter); `None` for
+/// a range below zero.
+///
+/// # Errors
+/// [`SimError::Sensor`] for a non-finite value.
+fn from_components(sensor: &SensorSpec, c: [f64; 3]) -> Result<Option<Measurement>, SimError> {
+    Ok(Some(match sensor.kind {
+        SensorKind::Polar { .. } => return radar(c[0], wrap_angle(c[1]), None),
+        SensorKind::Spherical { .. } => return radar(c[0], wrap_angle(c[1]), Some(c[2])),
+        SensorKind::Cartesian2d { cov } => {
+            CartesianMeasurement::new(Vector::<2>::new(c[0], c[1]), cov)?.into()
+        }
+        SensorKind::Cartesian3d { cov } => {
+            CartesianMeasurement::new(Vector::<3>::new(c[0], c[1], c[2]), cov)?.into()
+        }
+    }))
+}
+
+/// Adds a sensor's plot with its amplitude and true origin (none for a dropped
+/// measurement).
+fn push(
+    plots: &mut Vec<LabelledPlot>,
+    (time, sensor): (f64, SensorId),
+    measurement: Option<Measurement>,
+    amplitude: Option<f64>,
+    origin: Origin,
+) -> Result<(), SimError> {
+    if let Some(m) = measurement {
+        plots.push(LabelledPlot {
+            plot: Plot::new(time, sensor, m)?.with_amplitude(amplitude)?,
+            origin,
+        });
     }
+    Ok(())
 }
 
 /// Rayleigh draw with scale² `s2`: `sqrt(−2 s2 ln U)`, `U` uniform on `(0, 1]`.
@@ -394,12 +314,14 @@ fn scans(sensor: &SensorSpec, truth: &Truth) -> Result<Vec<(i64, f64, Vec<Look>)
 ///
 /// # Errors
 /// [`SimError::TimeOutOfSpan`] only on internal inconsistency (looks are drawn inside
-/// each trajectory's span).
+/// each trajectory's span); [`SimError::Sensor`] for a non-finite measured value. A
+/// polar or spherical plot whose range comes out below zero (noise larger than the range,
+/// or a clutter region reaching behind the sensor) is dropped, after its random draws.
 pub fn generate_plots<R: Rng + ?Sized>(
     truth: &Truth,
     sensors: &[SensorSpec],
     rng: &mut R,
-) -> Result<Vec<Plot>, SimError> {
+) -> Result<Vec<LabelledPlot>, SimError> {
     let mut plots = Vec::new();
     for sensor in sensors {
         for (_, scan_start, looks) in scans(sensor, truth)? {
@@ -408,21 +330,22 @@ pub fn generate_plots<R: Rng + ?Sized>(
                     continue;
                 };
                 let state = tr.state_at(look.time)?;
-                let clean = true_measurement(sensor, &state);
+                let clean = sensor.model.h(&state.position);
                 let (detected, amplitude) = detect_target(&sensor.detection, rng);
                 if detected {
-                    plots.push(Plot {
-                        time: look.time,
-                        sensor: sensor.id,
-                        measurement: corrupt(sensor, clean, rng),
+                    let m = corrupt(sensor, clean, rng)?;
+                    push(
+                        &mut plots,
+                        (look.time, sensor.id),
+                        m,
                         amplitude,
-                        origin: Origin::Target(*id),
-                    });
+                        Origin::Target(*id),
+                    )?;
                 }
                 if let Some(c) = sensor.clutter
                     && let ClutterRegion::Gate { half_width } = c.region
                 {
-                    let (centre, dim) = clean.components();
+                    let (centre, dim) = (clean, sensor.kind.dim());
                     let volume: f64 = half_width.iter().take(dim).map(|h| 2.0 * h).product();
                     let n = poisson(c.density * volume, rng);
                     for _ in 0..n {
@@ -430,13 +353,9 @@ pub fn generate_plots<R: Rng + ?Sized>(
                         for (zi, h) in z.iter_mut().zip(half_width.iter()).take(dim) {
                             *zi += h * (2.0 * rng.random::<f64>() - 1.0);
                         }
-                        plots.push(Plot {
-                            time: look.time,
-                            sensor: sensor.id,
-                            measurement: from_components(sensor, z),
-                            amplitude: clutter_amplitude(&sensor.detection, rng),
-                            origin: Origin::Clutter,
-                        });
+                        let m = from_components(sensor, z)?;
+                        let a = clutter_amplitude(&sensor.detection, rng);
+                        push(&mut plots, (look.time, sensor.id), m, a, Origin::Clutter)?;
                     }
                 }
             }
@@ -474,13 +393,9 @@ pub fn generate_plots<R: Rng + ?Sized>(
                         }
                         _ => scan_start,
                     };
-                    plots.push(Plot {
-                        time,
-                        sensor: sensor.id,
-                        measurement: from_components(sensor, z),
-                        amplitude: clutter_amplitude(&sensor.detection, rng),
-                        origin: Origin::Clutter,
-                    });
+                    let m = from_components(sensor, z)?;
+                    let a = clutter_amplitude(&sensor.detection, rng);
+                    push(&mut plots, (time, sensor.id), m, a, Origin::Clutter)?;
                 }
             }
         }
@@ -489,9 +404,9 @@ pub fn generate_plots<R: Rng + ?Sized>(
     let rank = |id: SensorId| order.iter().position(|s| *s == id).unwrap_or(usize::MAX);
     // Stable sort keeps generation order among equal (time, sensor).
     plots.sort_by(|a, b| {
-        a.time
-            .total_cmp(&b.time)
-            .then(rank(a.sensor).cmp(&rank(b.sensor)))
+        (a.plot.time())
+            .total_cmp(&b.plot.time())
+            .then(rank(a.plot.sensor()).cmp(&rank(b.plot.sensor())))
     });
     Ok(plots)
 }

@@ -2,14 +2,11 @@
 //! bias, when it looks, how it detects and what clutter it sees.
 
 use argus_core_math::{Matrix, SpdFactor, Vector};
+use argus_sensors::{
+    CartesianPosition, MeasurementModel, Polar2D, RadarNoise, SensorId, Spherical3D,
+};
 
 use crate::error::{SimError, finite, non_negative, positive, probability};
-
-/// Identifies a sensor.
-#[derive(
-    Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
-)]
-pub struct SensorId(pub u32);
 
 /// What a sensor measures and its white-noise standard deviations.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -180,10 +177,41 @@ pub struct SensorSpec {
     pub(crate) kind: SensorKind,
     /// Cholesky factor of a Cartesian report covariance (identity otherwise).
     pub(crate) chol: Matrix<3, 3>,
+    /// The sensor's measurement function `h`, read on the target position `(x, y, z)`.
+    pub(crate) model: Model,
     pub(crate) bias: Bias,
     pub(crate) schedule: Schedule,
     pub(crate) detection: Detection,
     pub(crate) clutter: Option<Clutter>,
+}
+
+/// A sensor's measurement model from `argus-sensors`, on the target position
+/// `(x, y, z)` as its state (global frame; the sensor's position is inside the model).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Model {
+    Polar(Polar2D<3>),
+    Spherical(Spherical3D<3>),
+    Cartesian2(CartesianPosition<3, 2>),
+    Cartesian3(CartesianPosition<3, 3>),
+}
+
+impl Model {
+    /// The noise-free measurement `h(p)` of a target at `p`: `(range, azimuth[,
+    /// elevation])` relative to the sensor or `(x, y[, z])`, zero-padded to three.
+    pub(crate) fn h(&self, p: &Vector<3>) -> [f64; 3] {
+        match self {
+            Self::Polar(m) => {
+                let z = m.predict(p);
+                [z[0], z[1], 0.0]
+            }
+            Self::Spherical(m) => m.predict(p).into(),
+            Self::Cartesian2(m) => {
+                let z = m.predict(p);
+                [z[0], z[1], 0.0]
+            }
+            Self::Cartesian3(m) => m.predict(p).into(),
+        }
+    }
 }
 
 impl SensorSpec {
@@ -203,13 +231,16 @@ impl SensorSpec {
             finite("sensor position", *c)?;
         }
         let mut chol = Matrix::<3, 3>::identity();
-        match kind {
+        let (px, py, pz) = (position[0], position[1], position[2]);
+        let model = match kind {
             SensorKind::Polar {
                 sigma_range,
                 sigma_azimuth,
             } => {
                 non_negative("range sigma", sigma_range)?;
                 non_negative("azimuth sigma", sigma_azimuth)?;
+                let noise = RadarNoise::constant(sigma_range, sigma_azimuth, 0.0)?;
+                Model::Polar(Polar2D::new([0, 1], [px, py], noise)?)
             }
             SensorKind::Spherical {
                 sigma_range,
@@ -219,15 +250,19 @@ impl SensorSpec {
                 non_negative("range sigma", sigma_range)?;
                 non_negative("azimuth sigma", sigma_azimuth)?;
                 non_negative("elevation sigma", sigma_elevation)?;
+                let noise = RadarNoise::constant(sigma_range, sigma_azimuth, sigma_elevation)?;
+                Model::Spherical(Spherical3D::new([0, 1, 2], [px, py, pz], noise)?)
             }
             SensorKind::Cartesian2d { cov } => {
                 let l = SpdFactor::new(&cov, "Cartesian report covariance")?.l();
                 chol.fixed_view_mut::<2, 2>(0, 0).copy_from(&l);
+                Model::Cartesian2(CartesianPosition::new([0, 1], cov)?)
             }
             SensorKind::Cartesian3d { cov } => {
                 chol = SpdFactor::new(&cov, "Cartesian report covariance")?.l();
+                Model::Cartesian3(CartesianPosition::new([0, 1, 2], cov)?)
             }
-        }
+        };
         positive("scan period", schedule.period())?;
         match schedule {
             Schedule::Periodic { offset, .. } => {
@@ -244,6 +279,7 @@ impl SensorSpec {
             position,
             kind,
             chol,
+            model,
             bias: Bias::default(),
             schedule,
             detection: Detection::Probability(1.0),

@@ -10,10 +10,10 @@
 #![allow(clippy::unwrap_used)]
 
 use argus_core_math::Vector;
+use argus_sensors::Measurement;
 use argus_sim::{
-    Clutter, ClutterRegion, Detection, KinematicState, Measurement, Origin, Schedule, Segment,
-    SensorId, SensorKind, SensorSpec, TargetId, Trajectory, Truth, generate_plots, monte_carlo,
-    run_rng,
+    Clutter, ClutterRegion, Detection, KinematicState, Origin, Schedule, Segment, SensorId,
+    SensorKind, SensorSpec, TargetId, Trajectory, Truth, generate_plots, monte_carlo, run_rng,
 };
 
 fn scene() -> (Truth, Vec<SensorSpec>) {
@@ -108,10 +108,11 @@ fn fixed_seed_gives_the_same_plots_forever() {
     ];
     for (i, t, r, az, a, target) in pinned {
         let p = plots[i];
-        assert_eq!(p.time.to_bits(), f64::to_bits(t), "time of plot {i}");
-        let Measurement::Polar { range, azimuth } = p.measurement else {
+        assert_eq!(p.plot.time().to_bits(), f64::to_bits(t), "time of plot {i}");
+        let Measurement::Polar(m) = p.plot.measurement() else {
             panic!("plot {i} is not polar");
         };
+        let (range, azimuth) = (m.range(), m.azimuth());
         // Allow last-bit differences from libm (sin/cos/atan2) across platforms.
         assert!((range - r).abs() <= 1e-9 * r, "range of plot {i}: {range}");
         assert!(
@@ -119,7 +120,7 @@ fn fixed_seed_gives_the_same_plots_forever() {
             "azimuth of plot {i}: {azimuth}"
         );
         assert!(
-            (p.amplitude.unwrap() - a).abs() <= 1e-12,
+            (p.plot.amplitude().unwrap() - a).abs() <= 1e-12,
             "amplitude of plot {i}"
         );
         assert_eq!(
@@ -136,7 +137,7 @@ fn beam_crossing_matches_geometry() {
     // target's azimuth: t = T · wrap_2π(θ(t)) / 2π, with θ(t) of the truth at that time.
     let (truth, sensors) = scene();
     let plots = generate_plots(&truth, &sensors, &mut run_rng(1, 0)).unwrap();
-    let t = plots[0].time;
+    let t = plots[0].plot.time();
     let s = truth.targets()[0].1.state_at(t).unwrap();
     let theta = s
         .position
@@ -157,10 +158,10 @@ fn run_stat(rng: &mut argus_sim::ChaCha8Rng) -> Result<(f64, usize), argus_sim::
     let mut err = 0.0;
     let mut clutter = 0;
     for p in &plots {
-        match (p.origin, p.measurement) {
-            (Origin::Target(TargetId(0)), Measurement::Polar { range, .. }) => {
-                let s = truth.targets()[0].1.state_at(p.time)?;
-                err += range - s.position.norm();
+        match (p.origin, p.plot.measurement()) {
+            (Origin::Target(TargetId(0)), Measurement::Polar(m)) => {
+                let s = truth.targets()[0].1.state_at(p.plot.time())?;
+                err += m.range() - s.position.norm();
             }
             (Origin::Clutter, _) => clutter += 1,
             _ => {}

@@ -47,15 +47,19 @@ fn scan(rng: &mut Rng, targets: &[(Vector<2>, Vector<2>)], t: f64, side: f64) ->
                 p0 + v * t + Vector::<2>::new(SIGMA * rng.gauss(), SIGMA * rng.gauss()),
                 cov,
             )
+            .unwrap()
         })
         .collect();
     for _ in 0..targets.len() / 10 {
-        plots.push(Plot::cartesian(
-            t,
-            SensorId(0),
-            Vector::<2>::new(side * rng.uniform(), side * rng.uniform()),
-            cov,
-        ));
+        plots.push(
+            Plot::cartesian(
+                t,
+                SensorId(0),
+                Vector::<2>::new(side * rng.uniform(), side * rng.uniform()),
+                cov,
+            )
+            .unwrap(),
+        );
     }
     plots
 }

@@ -101,6 +101,18 @@ pub enum TrackerError {
         /// Its sensor.
         sensor: SensorId,
     },
+    /// A plot is 3-D (spherical or a 3-D position); the tracker takes 2-D plots.
+    #[error(
+        "plot {index} at t = {time} s from sensor {sensor:?} is 3-D; the tracker takes 2-D polar or Cartesian plots"
+    )]
+    NotPlanar {
+        /// Index of the plot in the slice given.
+        index: usize,
+        /// Its time (s).
+        time: f64,
+        /// Its sensor.
+        sensor: SensorId,
+    },
     /// A polar plot could not be converted to a Cartesian position.
     #[error("plot {index} at t = {time} s from sensor {sensor:?}: conversion failed: {source}")]
     Conversion {

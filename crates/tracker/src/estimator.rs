@@ -6,10 +6,11 @@ use argus_core_math::{Gaussian, Vector};
 use argus_filters::{Ekf, GaussianFilter, Kf, MeasurementPrediction};
 use argus_imm::{
     Imm, ImmEstimate, ImmPrediction, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid,
-    NoiseVariances, PolarPlot, log_sum_exp, moment_match,
+    NoiseVariances, log_sum_exp, moment_match,
 };
 use argus_motion_models::Cv2D;
 use argus_sensors::Polar2D;
+use argus_sensors::PolarMeasurement;
 
 use crate::field::{ConfigField, EstimatorField};
 use crate::innovation::{gate_box, imm_gate_box, imm_innovation, innovation, polar_half};
@@ -359,7 +360,7 @@ fn multi_update(
     pm: &PolarModel,
     z: &Vector<2>,
 ) -> Option<(MultiState, Gaussian<4>, f64)> {
-    let plot = PolarPlot::new(z[0], z[1]).ok()?;
+    let plot = PolarMeasurement::new(z[0], z[1]).ok()?;
     let u = multi.update(predicted, &plot, &pm.conversion).ok()?;
     let ll = log_sum_exp(&u.log_likelihoods) - (MULTI_IMM_HYPOTHESES as f64).ln();
     let combined = u.estimate.combined().ok()?;

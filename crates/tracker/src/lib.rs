@@ -1,6 +1,7 @@
 //! Multi-target surveillance tracker: plots in, tracks out.
 //!
-//! A [`Tracker`] consumes a time-ordered stream of 2-D [`Plot`]s from one or more
+//! A [`Tracker`] consumes a time-ordered stream of 2-D [`Plot`]s (the workspace's plot
+//! type from `argus-sensors`, re-exported here with its [`SensorId`]) from one or more
 //! sensors ([`SensorConfig`]: id, position, polar noise), scan by scan: Cartesian plots
 //! ([`Plot::cartesian`], a position with its covariance) or polar plots
 //! ([`Plot::polar`], range and azimuth from the sensor's position). It maintains many
@@ -71,10 +72,11 @@
 //!    first points.
 //!
 //! # Bad input
-//! Plots out of time order, from a sensor not in the configuration, with a non-finite
-//! time, position, covariance, range or azimuth, with a covariance that is not symmetric
-//! positive definite, polar plots with a non-positive range or from a sensor without
-//! polar noise, Cartesian plots for the multi-IMM, and bad configurations give a
+//! A plot with a non-finite value, a negative range or a covariance that is not symmetric
+//! positive definite cannot be built ([`Plot`]'s constructors refuse it). Plots out of
+//! time order, from a sensor not in the configuration, polar plots with a zero range or
+//! from a sensor without polar noise, 3-D plots, Cartesian plots for the multi-IMM, and
+//! bad configurations give a
 //! [`TrackerError`] that names the plot (index, time, sensor) or the field. All plots are checked before any track is touched, so
 //! a rejected call leaves the tracker unchanged. A track whose filter step fails
 //! numerically is deleted alone.
@@ -106,14 +108,14 @@
 //! let r = Matrix::<2, 2>::identity() * 900.0;
 //! for k in 0..6 {
 //!     let t = 5.0 * f64::from(k);
-//!     let plot = Plot::cartesian(t, SensorId(0), Vector::<2>::new(200.0 * t, 0.0), r);
+//!     let plot = Plot::cartesian(t, SensorId(0), Vector::<2>::new(200.0 * t, 0.0), r)?;
 //!     tracker.process(&[plot])?;
 //! }
 //! // Initiated at the 2nd plot, confirmed at the 3rd (3 of 4).
 //! assert_eq!(tracker.tracks().len(), 1);
 //! assert_eq!(tracker.tracks()[0].status(), TrackStatus::Confirmed);
 //! assert_eq!(tracker.tracks()[0].confirmed_at(), Some(10.0));
-//! # Ok::<(), argus_tracker::TrackerError>(())
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
 mod assign;
@@ -131,12 +133,13 @@ mod state;
 mod track;
 mod tracker;
 
+/// The plot vocabulary the tracker takes (from `argus-sensors`), re-exported.
+pub use argus_sensors::{Plot, SensorId};
 pub use config::{
     AssociationConfig, EstimatorConfig, PolarNoise, ScoreConfig, SensorConfig, TrackerConfig,
 };
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
-pub use plot::{Plot, PlotMeasurement};
 pub use state::MULTI_IMM_HYPOTHESES;
-pub use track::{DeletionReason, SensorId, Track, TrackId, TrackStatus};
+pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};

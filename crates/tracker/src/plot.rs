@@ -1,77 +1,15 @@
-//! Plots (Cartesian or polar), the sensors they come from, and what a scan makes of them.
+//! What a scan makes of the plots it is given ([`argus_sensors::Plot`]: 2-D Cartesian
+//! or polar), and the configured sensors they come from.
 
 use argus_core_math::{Matrix, Vector};
 use argus_imm::{NoiseVariances, UnbiasedConversion};
 use argus_sensors::{
-    CartesianPosition, ConversionMethod, Polar2D, RadarNoise, Sigmas, convert_polar,
+    CartesianPosition, ConversionMethod, Measurement, Plot, Polar2D, RadarNoise, SensorId, Sigmas,
+    convert_polar,
 };
 
 use crate::field::{ConfigField, SensorField};
-use crate::{SensorConfig, SensorId, TrackerError};
-
-/// What a plot measured.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum PlotMeasurement {
-    /// A global position `(x, y)` (m) with its covariance (m²): finite, symmetric, positive
-    /// definite (e.g. a plot converted by the caller).
-    Cartesian {
-        /// Position `(x, y)` (m).
-        position: Vector<2>,
-        /// Its covariance (m²).
-        covariance: Matrix<2, 2>,
-    },
-    /// Range (m, positive) and azimuth (rad, counter-clockwise from +x) relative to the
-    /// sensor's position, with the sensor's configured polar noise.
-    Polar {
-        /// Range `r` (m).
-        range: f64,
-        /// Azimuth `θ` (rad).
-        azimuth: f64,
-    },
-}
-
-/// One plot from one sensor at one time. Build it with [`Plot::cartesian`] or
-/// [`Plot::polar`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Plot {
-    /// Time (s).
-    pub time: f64,
-    /// The sensor that made it.
-    pub sensor: SensorId,
-    /// What it measured.
-    pub measurement: PlotMeasurement,
-}
-
-impl Plot {
-    /// A Cartesian plot: global position `(x, y)` (m) and its covariance (m²).
-    #[must_use]
-    pub fn cartesian(
-        time: f64,
-        sensor: SensorId,
-        position: Vector<2>,
-        covariance: Matrix<2, 2>,
-    ) -> Self {
-        Self {
-            time,
-            sensor,
-            measurement: PlotMeasurement::Cartesian {
-                position,
-                covariance,
-            },
-        }
-    }
-
-    /// A polar plot: range (m) and azimuth (rad, counter-clockwise from +x) from the
-    /// sensor's position.
-    #[must_use]
-    pub fn polar(time: f64, sensor: SensorId, range: f64, azimuth: f64) -> Self {
-        Self {
-            time,
-            sensor,
-            measurement: PlotMeasurement::Polar { range, azimuth },
-        }
-    }
-}
+use crate::{SensorConfig, TrackerError};
 
 /// A checked plot of the scan: its global Cartesian position and covariance (converted
 /// once for a polar plot), the linear measurement model, and the raw `(r, θ)` when polar.
@@ -151,51 +89,36 @@ impl SensorModel {
         plot: &Plot,
         cartesian_ok: bool,
     ) -> Result<ScanPoint, TrackerError> {
-        let non_finite = |what| TrackerError::NonFinite {
-            index,
-            sensor: plot.sensor,
-            what,
-        };
-        let (position, covariance, polar) = match plot.measurement {
-            PlotMeasurement::Cartesian {
-                position,
-                covariance,
-            } => {
-                if !position.iter().all(|v| v.is_finite()) {
-                    return Err(non_finite("position"));
-                }
-                if !covariance.iter().all(|v| v.is_finite()) {
-                    return Err(non_finite("covariance"));
-                }
+        // The plot's values are finite and its covariance positive definite by
+        // construction (argus_sensors::Plot); what is checked here is what the tracker
+        // needs beyond that.
+        let (time, sensor) = (plot.time(), plot.sensor());
+        let (position, covariance, polar) = match plot.measurement() {
+            Measurement::Cartesian2(c) => {
                 if !cartesian_ok {
                     return Err(TrackerError::NotPolar {
                         index,
-                        time: plot.time,
-                        sensor: plot.sensor,
+                        time,
+                        sensor,
                     });
                 }
-                (position, covariance, None)
+                (*c.position(), *c.covariance(), None)
             }
-            PlotMeasurement::Polar { range, azimuth } => {
-                if !range.is_finite() {
-                    return Err(non_finite("range"));
-                }
-                if !azimuth.is_finite() {
-                    return Err(non_finite("azimuth"));
-                }
+            Measurement::Polar(m) => {
+                let (range, azimuth) = (m.range(), m.azimuth());
                 if range <= 0.0 {
                     return Err(TrackerError::NonPositiveRange {
                         index,
-                        time: plot.time,
-                        sensor: plot.sensor,
+                        time,
+                        sensor,
                         range,
                     });
                 }
                 let Some(pm) = &self.polar else {
                     return Err(TrackerError::NoPolarNoise {
                         index,
-                        time: plot.time,
-                        sensor: plot.sensor,
+                        time,
+                        sensor,
                     });
                 };
                 let c = convert_polar(
@@ -207,8 +130,8 @@ impl SensorModel {
                 )
                 .map_err(|source| TrackerError::Conversion {
                     index,
-                    time: plot.time,
-                    sensor: plot.sensor,
+                    time,
+                    sensor,
                     source,
                 })?;
                 (
@@ -217,12 +140,19 @@ impl SensorModel {
                     Some(Vector::<2>::new(range, azimuth)),
                 )
             }
+            Measurement::Spherical(_) | Measurement::Cartesian3(_) => {
+                return Err(TrackerError::NotPlanar {
+                    index,
+                    time,
+                    sensor,
+                });
+            }
         };
         let model = CartesianPosition::<4, 2>::cv(covariance).map_err(|source| {
             TrackerError::PlotCovariance {
                 index,
-                time: plot.time,
-                sensor: plot.sensor,
+                time,
+                sensor,
                 source,
             }
         })?;
@@ -292,7 +222,7 @@ mod tests {
                 if z[0] <= 0.0 {
                     continue;
                 }
-                let plot = Plot::polar(0.0, SensorId(0), z[0], z[1]);
+                let plot = Plot::polar(0.0, SensorId(0), z[0], z[1]).unwrap();
                 let point = sensor.point(0, &plot, true).unwrap();
                 let d = point.position - Vector::<2>::new(mean[0], mean[2]);
                 assert!(

@@ -9,10 +9,6 @@ use crate::state::TrackState;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct TrackId(pub u64);
 
-/// A sensor's id, as listed in [`crate::TrackerConfig::sensors`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct SensorId(pub u32);
-
 /// Where a track is in its life.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum TrackStatus {

@@ -188,7 +188,7 @@ impl Tracker {
         plot: &Plot,
         previous: Option<f64>,
     ) -> Result<ScanPoint, TrackerError> {
-        let s = self.check_time_sensor(index, plot.time, plot.sensor, previous)?;
+        let s = self.check_time_sensor(index, plot.time(), plot.sensor(), previous)?;
         self.sensors[s].point(index, plot, self.est.takes_cartesian())
     }
 
@@ -208,15 +208,15 @@ impl Tracker {
         let mut previous = self.time;
         for (index, plot) in plots.iter().enumerate() {
             self.check_plot(index, plot, previous)?;
-            previous = Some(plot.time);
+            previous = Some(plot.time());
         }
         let mut reports = Vec::new();
         let mut start = 0;
         while start < plots.len() {
-            let (t, s) = (plots[start].time, plots[start].sensor);
+            let (t, s) = (plots[start].time(), plots[start].sensor());
             let len = plots[start..]
                 .iter()
-                .take_while(|p| p.sensor == s && p.time.total_cmp(&t).is_eq())
+                .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
                 .count();
             reports.push(self.process_scan(t, s, &plots[start..start + len])?);
             start += len;
@@ -248,7 +248,7 @@ impl Tracker {
         let mut points = std::mem::take(&mut self.points);
         points.clear();
         for (index, plot) in plots.iter().enumerate() {
-            if plot.sensor != sensor || !plot.time.total_cmp(&time).is_eq() {
+            if plot.sensor() != sensor || !plot.time().total_cmp(&time).is_eq() {
                 self.points = points;
                 return Err(TrackerError::MixedScan {
                     index,

@@ -19,6 +19,7 @@ fn plot(rng: &mut ChaCha8Rng, t: f64, p: Vector<2>) -> Plot {
         p + Vector::<2>::new(SIGMA * nx, SIGMA * ny),
         Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
     )
+    .unwrap()
 }
 
 #[test]

@@ -60,6 +60,7 @@ fn crossing_with(
                     p + Vector::<2>::new(SIGMA * nx, SIGMA * ny),
                     Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
                 )
+                .unwrap()
             })
             .collect();
         tracker.process_scan(t, S0, &plots).unwrap();
@@ -202,17 +203,21 @@ fn imm_jpda_with_identical_modes_is_jpda_with_the_kf() {
                     ),
                     Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
                 )
+                .unwrap()
             })
             .collect();
         for _ in 0..2 {
             let ux: f64 = StandardNormal.sample(&mut rng);
             let uy: f64 = StandardNormal.sample(&mut rng);
-            plots.push(Plot::cartesian(
-                t,
-                S0,
-                Vector::<2>::new(200.0 * c * tau + 300.0 * ux, 300.0 * uy),
-                Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
-            ));
+            plots.push(
+                Plot::cartesian(
+                    t,
+                    S0,
+                    Vector::<2>::new(200.0 * c * tau + 300.0 * ux, 300.0 * uy),
+                    Matrix::<2, 2>::identity() * (SIGMA * SIGMA),
+                )
+                .unwrap(),
+            );
         }
         let ra = kf.process_scan(t, S0, &plots).unwrap();
         let rb = imm.process_scan(t, S0, &plots).unwrap();
@@ -266,7 +271,7 @@ fn one_track_jpda_is_the_pda_of_the_clutter_issue() {
         let t = T * k as f64;
         let z = truth(t) + Vector::<2>::new(*ex, *ey);
         tracker
-            .process_scan(t, S0, &[Plot::cartesian(t, S0, z, r)])
+            .process_scan(t, S0, &[Plot::cartesian(t, S0, z, r).unwrap()])
             .unwrap();
     }
     assert_eq!(tracker.tracks().len(), 1);
@@ -279,7 +284,10 @@ fn one_track_jpda_is_the_pda_of_the_clutter_issue() {
         truth(t) + Vector::<2>::new(-70.0, 40.0),
         truth(t) + Vector::<2>::new(55.0, -60.0),
     ];
-    let plots: Vec<Plot> = zs.iter().map(|z| Plot::cartesian(t, S0, *z, r)).collect();
+    let plots: Vec<Plot> = zs
+        .iter()
+        .map(|z| Plot::cartesian(t, S0, *z, r).unwrap())
+        .collect();
     tracker.process_scan(t, S0, &plots).unwrap();
     assert_eq!(
         tracker.tracks().len(),

@@ -4,11 +4,11 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use argus_core_math::Vector;
-use argus_sensors::{ConversionMethod, convert_polar};
+use argus_sensors::{ConversionMethod, Measurement, convert_polar};
 use argus_sim::{ChaCha8Rng, run_rng};
 use argus_tracker::{
-    AssociationConfig, EstimatorConfig, Plot, PlotMeasurement, SensorConfig, SensorId, TrackStatus,
-    Tracker, TrackerConfig, TrackerError,
+    AssociationConfig, EstimatorConfig, Plot, SensorConfig, SensorId, TrackStatus, Tracker,
+    TrackerConfig, TrackerError,
 };
 use rand::RngExt;
 use rand_distr::{Distribution, StandardNormal};
@@ -30,13 +30,15 @@ fn polar(rng: &mut ChaCha8Rng, t: f64, p: Vector<2>) -> Plot {
         d.norm() + SIGMA_R * nr,
         d[1].atan2(d[0]) + SIGMA_AZ * na,
     )
+    .unwrap()
 }
 
 /// The same plot converted by the caller (unbiased conversion, plus the sensor position).
 fn converted(p: &Plot) -> Plot {
-    let PlotMeasurement::Polar { range, azimuth } = p.measurement else {
+    let Measurement::Polar(m) = p.measurement() else {
         panic!("not polar");
     };
+    let (range, azimuth) = (m.range(), m.azimuth());
     let c = convert_polar(
         range,
         azimuth,
@@ -46,11 +48,12 @@ fn converted(p: &Plot) -> Plot {
     )
     .unwrap();
     Plot::cartesian(
-        p.time,
-        p.sensor,
+        p.time(),
+        p.sensor(),
         c.position + Vector::<2>::new(SENSOR[0], SENSOR[1]),
         c.covariance,
     )
+    .unwrap()
 }
 
 /// Three targets 20–40 km out and a few uniform false plots per scan.
@@ -117,7 +120,7 @@ fn polar_plots_give_the_tracks_of_preconverted_cartesian_plots() {
         let mut with_cartesian = Tracker::new(cfg).unwrap();
         let mut confirmed = 0;
         for scan in scans(0, 20) {
-            let t = scan[0].time;
+            let t = scan[0].time();
             let conv: Vec<Plot> = scan.iter().map(converted).collect();
             let ra = with_polar.process_scan(t, S0, &scan).unwrap();
             let rb = with_cartesian.process_scan(t, S0, &conv).unwrap();
@@ -153,34 +156,19 @@ fn bad_polar_plots_are_rejected_with_their_place_and_change_nothing() {
         tracker.process(scan).unwrap();
     }
     let before = tracker.tracks().to_vec();
-    let t = all[4][0].time;
+    let t = all[4][0].time();
     let good = all[4][0];
-    let cases: [(Plot, Check); 5] = [
-        (Plot::polar(t, S0, f64::NAN, 0.1), |e| {
-            matches!(
-                e,
-                TrackerError::NonFinite {
-                    index: 1,
-                    what: "range",
-                    ..
-                }
-            )
-        }),
-        (Plot::polar(t, S0, 1000.0, f64::INFINITY), |e| {
-            matches!(
-                e,
-                TrackerError::NonFinite {
-                    index: 1,
-                    what: "azimuth",
-                    ..
-                }
-            )
-        }),
+    // A non-finite range or azimuth, or a negative range, is not a plot (argus_sensors
+    // refuses to build it); a range of zero is one, which the tracker refuses.
+    assert!(Plot::polar(t, S0, f64::NAN, 0.1).is_err());
+    assert!(Plot::polar(t, S0, 1000.0, f64::INFINITY).is_err());
+    assert!(Plot::polar(t, S0, -5.0, 0.1).is_err());
+    let cases: [(Plot, Check); 3] = [
         (
-            Plot::polar(t, S0, -5.0, 0.1),
-            |e| matches!(e, TrackerError::NonPositiveRange { index: 1, range, .. } if range.total_cmp(&-5.0).is_eq()),
+            Plot::polar(t, S0, 0.0, 0.1).unwrap(),
+            |e| matches!(e, TrackerError::NonPositiveRange { index: 1, range, .. } if range.total_cmp(&0.0).is_eq()),
         ),
-        (Plot::polar(t, SensorId(1), 1000.0, 0.1), |e| {
+        (Plot::polar(t, SensorId(1), 1000.0, 0.1).unwrap(), |e| {
             matches!(
                 e,
                 TrackerError::NoPolarNoise {
@@ -190,7 +178,7 @@ fn bad_polar_plots_are_rejected_with_their_place_and_change_nothing() {
                 }
             )
         }),
-        (Plot::polar(t, SensorId(7), 1000.0, 0.1), |e| {
+        (Plot::polar(t, SensorId(7), 1000.0, 0.1).unwrap(), |e| {
             matches!(
                 e,
                 TrackerError::UnknownSensor {
@@ -204,7 +192,7 @@ fn bad_polar_plots_are_rejected_with_their_place_and_change_nothing() {
     for (bad, ok) in cases {
         let err = tracker.process(&[good, bad]).unwrap_err();
         assert!(ok(&err), "{err:?}");
-        if bad.sensor == S0 {
+        if bad.sensor() == S0 {
             let err = tracker.process_scan(t, S0, &[good, bad]).unwrap_err();
             assert!(ok(&err), "{err:?}");
         }
@@ -259,7 +247,7 @@ fn a_polar_plot_the_conversion_cannot_take_is_a_typed_error() {
     )]))
     .unwrap();
     let err = tracker
-        .process(&[Plot::polar(0.0, S0, 10_000.0, 0.3)])
+        .process(&[Plot::polar(0.0, S0, 10_000.0, 0.3).unwrap()])
         .unwrap_err();
     assert!(
         matches!(

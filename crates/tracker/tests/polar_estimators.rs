@@ -47,6 +47,7 @@ fn plot(rng: &mut ChaCha8Rng, t: f64, x: &Vector<4>, sigmas: [f64; 2]) -> Plot {
         dx.hypot(dy) + sigmas[0] * gauss(rng),
         dy.atan2(dx) + sigmas[1] * gauss(rng),
     )
+    .unwrap()
 }
 
 /// σ_r = 20 m, σ_θ = 3 mrad (≈ 100 m cross-range at 33 km).
@@ -153,7 +154,7 @@ fn ekf_takes_cartesian_plots_through_the_linear_update() {
     for (k, x) in truth(&mut rng, 2.0, 12).iter().enumerate() {
         let t = T * k as f64;
         let z = Vector::<2>::new(x[0] + 50.0 * gauss(&mut rng), x[2] + 50.0 * gauss(&mut rng));
-        let p = Plot::cartesian(t, S0, z, r);
+        let p = Plot::cartesian(t, S0, z, r).unwrap();
         kf.process_scan(t, S0, &[p]).unwrap();
         ekf.process_scan(t, S0, &[p]).unwrap();
         assert_eq!(kf.tracks().len(), ekf.tracks().len());
@@ -352,7 +353,8 @@ fn multi_imm_configs_and_plots_are_checked() {
         S0,
         Vector::<2>::new(1.0, 2.0),
         argus_core_math::Matrix::<2, 2>::identity(),
-    );
+    )
+    .unwrap();
     let err = tracker.process(&[good, cart]).unwrap_err();
     assert!(
         matches!(err, TrackerError::NotPolar { index: 1, .. }),

@@ -62,7 +62,7 @@ fn score_follows_the_llr_recursion_and_drives_confirmation_and_deletion() {
     for k in 0..20 {
         let t = T * f64::from(k);
         let plots = if k <= 9 {
-            vec![Plot::cartesian(t, S0, pos(t), r())]
+            vec![Plot::cartesian(t, S0, pos(t), r()).unwrap()]
         } else {
             vec![]
         };
@@ -132,6 +132,7 @@ fn false_confirmations_stay_under_villes_bound() {
                     Vector::<2>::new(side * rng.random::<f64>(), side * rng.random::<f64>()),
                     r(),
                 )
+                .unwrap()
             })
             .collect();
         let rep = tracker.process_scan(t, S0, &plots).unwrap();

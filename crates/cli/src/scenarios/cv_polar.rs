@@ -11,9 +11,10 @@
 //! over many scans (ANEES ≈ 6.8 at 1°, seed 1, 100 runs).
 
 use argus_core_math::Vector;
+use argus_sensors::Measurement;
 use argus_sim::{
-    KinematicState, Measurement, Metrics, RunRecord, Schedule, Segment, SensorId, SensorKind,
-    SensorSpec, StepRecord, Trajectory, Truth, generate_plots,
+    KinematicState, Metrics, RunRecord, Schedule, Segment, SensorId, SensorKind, SensorSpec,
+    StepRecord, Trajectory, Truth, generate_plots,
 };
 use serde::{Deserialize, Serialize};
 
@@ -201,9 +202,9 @@ impl Campaign for CvPolar {
         let plots = generate_plots(&s.truth, &s.sensors, rng)?;
         let mut conv = Vec::with_capacity(plots.len());
         for pl in &plots {
-            if let Measurement::Polar { range, azimuth } = pl.measurement {
-                let (z, r) = unbiased(range, azimuth, s.sigma_r, s.sigma_th)?;
-                conv.push((pl.time, z, r));
+            if let Measurement::Polar(m) = pl.plot.measurement() {
+                let (z, r) = unbiased(m.range(), m.azimuth(), s.sigma_r, s.sigma_th)?;
+                conv.push((pl.plot.time(), z, r));
             }
         }
         let mut conv = conv.into_iter();

@@ -9,13 +9,14 @@ use argus_core_math::Vector;
 use argus_filters::{Kf, two_point_cv2};
 use argus_imm::{
     DifferenceEstimate, DifferenceNoiseImm, EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate,
-    MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion, PolarPlot,
+    MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion,
     UnbiasedConversion, VariationalEstimate, VariationalNoiseImm,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
+use argus_sensors::{Measurement, PolarMeasurement};
 use argus_sim::{
-    KinematicState, Measurement, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory,
-    Truth, generate_plots, monte_carlo,
+    KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
+    generate_plots, monte_carlo,
 };
 
 use crate::error::CliError;
@@ -268,12 +269,10 @@ impl Scenario for Gimpo {
         let scaled = |f: f64| NoiseVariances::new(true_var.range() * f, true_var.azimuth() * f);
 
         let one_run = |run: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<RunOut, CliError> {
-            let plots: Vec<(f64, PolarPlot)> = generate_plots(&truth, &sensors, rng)?
+            let plots: Vec<(f64, PolarMeasurement)> = generate_plots(&truth, &sensors, rng)?
                 .iter()
-                .filter_map(|pl| match pl.measurement {
-                    Measurement::Polar { range, azimuth } => {
-                        PolarPlot::new(range, azimuth).ok().map(|x| (pl.time, x))
-                    }
+                .filter_map(|pl| match pl.plot.measurement() {
+                    Measurement::Polar(m) => Some((pl.plot.time(), *m)),
                     _ => None,
                 })
                 .collect();
@@ -378,7 +377,7 @@ impl Scenario for Gimpo {
             generate_plots(&truth, &sensors, &mut rng)?
                 .iter()
                 .skip(2)
-                .map(|pl| pl.time)
+                .map(|pl| pl.plot.time())
                 .collect()
         };
         let n_runs = runs.len() as f64;

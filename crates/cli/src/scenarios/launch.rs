@@ -15,10 +15,8 @@
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{Ekf, GaussianFilter};
 use argus_motion_models::Ca3D;
-use argus_sensors::{RadarNoise, Spherical3D};
-use argus_sim::{
-    ChaCha8Rng, Metrics, RunRecord, SensorSpec, StepRecord, Truth, monte_carlo, wrap_angle,
-};
+use argus_sensors::{RadarNoise, Spherical3D, wrap_angle};
+use argus_sim::{ChaCha8Rng, Metrics, RunRecord, SensorSpec, StepRecord, Truth, monte_carlo};
 use rand_distr::{Distribution, StandardNormal};
 
 use crate::error::CliError;

@@ -41,11 +41,10 @@
 use std::f64::consts::{PI, TAU};
 
 use argus_core_math::Vector;
-use argus_sensors::{ConversionMethod, convert_polar};
+use argus_sensors::{ConversionMethod, Measurement, convert_polar};
 use argus_sim::{
-    ChaCha8Rng, Detection, Gospa, KinematicState, Measurement, Ospa, Schedule, Segment, SensorId,
-    SensorKind, SensorSpec, TargetId, TrackScan, TrackStatistics, Trajectory, Truth,
-    generate_plots, run_rng,
+    ChaCha8Rng, Detection, Gospa, KinematicState, Ospa, Schedule, Segment, SensorId, SensorKind,
+    SensorSpec, TargetId, TrackScan, TrackStatistics, Trajectory, Truth, generate_plots, run_rng,
 };
 use argus_tracker::{
     AssociationConfig, EstimatorConfig, Plot, TrackStatus, Tracker, TrackerConfig,
@@ -306,10 +305,11 @@ impl Setup {
         let raw = generate_plots(truth, std::slice::from_ref(&self.radar), rng)?;
         let mut scans: Vec<Vec<Plot>> = vec![Vec::new(); self.scans];
         for p in &raw {
-            let k = (p.time / self.period).round();
-            let Measurement::Polar { range, azimuth } = p.measurement else {
+            let k = (p.plot.time() / self.period).round();
+            let Measurement::Polar(m) = p.plot.measurement() else {
                 continue;
             };
+            let (range, azimuth) = (m.range(), m.azimuth());
             // A noisy range at or below zero (a target over the radar) is no plot.
             if k < 0.0 || range <= 0.0 {
                 continue;
@@ -351,7 +351,7 @@ impl Setup {
             argus_tracker::SensorId(RADAR),
             c.position,
             c.covariance,
-        ))
+        )?)
     }
 
     fn time(&self, k: usize) -> f64 {

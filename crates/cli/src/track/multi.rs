@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use argus_core_math::{Matrix, Vector};
+use argus_sensors::Measurement;
 use argus_tracker::{
     AssociationConfig, DeletionReason, EstimatorConfig, Plot, SensorId, Track, TrackStatus,
     Tracker, TrackerConfig, TrackerError,
@@ -15,7 +15,7 @@ use super::rows::{Column, Point, TrackRows};
 use super::tracker_config::MultiTarget;
 use crate::error::CliError;
 use crate::output::write_atomic;
-use crate::plotfile::{FilePlot, FileValue};
+use crate::plotfile::FilePlot;
 
 /// Where the run's inputs and outputs are, for errors and the summary.
 pub(super) struct Files<'a> {
@@ -54,16 +54,9 @@ fn row(out: &mut TrackRows, sensor: SensorId, track: &Track) {
 /// them with its sensor's noise, or the EKF and multi-IMM use them directly), Cartesian
 /// reports with their covariance.
 fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliError> {
-    let sensor = SensorId(p.sensor);
-    match p.value {
-        FileValue::Cartesian { x, y, cov } => Ok(Plot::cartesian(
-            p.time,
-            sensor,
-            Vector::<2>::new(x, y),
-            Matrix::<2, 2>::new(cov[0], cov[1], cov[1], cov[2]),
-        )),
-        FileValue::Polar { range, azimuth } => Ok(Plot::polar(p.time, sensor, range, azimuth)),
-        FileValue::Spherical { .. } | FileValue::Cartesian3 { .. } => Err(CliError::input(
+    match p.measurement() {
+        Measurement::Cartesian2(_) | Measurement::Polar(_) => Ok(p.plot),
+        Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(CliError::input(
             files.plots,
             Some(p.line),
             None,
@@ -183,10 +176,10 @@ pub(super) fn run(
     let (mut scans, mut assigned) = (0, 0);
     let mut start = 0;
     while start < converted.len() {
-        let (t, s) = (converted[start].time, converted[start].sensor);
+        let (t, s) = (converted[start].time(), converted[start].sensor());
         let len = converted[start..]
             .iter()
-            .take_while(|p| p.sensor == s && p.time.total_cmp(&t).is_eq())
+            .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
             .count();
         let report = tracker
             .process_scan(t, s, &converted[start..start + len])

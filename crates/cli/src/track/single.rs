@@ -2,8 +2,9 @@
 //! files get a 2-D CV estimator (`[x, vx, y, vy]`), 3-D ones (spherical or Cartesian 3-D)
 //! a 3-D CV estimator; the IMMs ([`super::single_imm`]) are 2-D. One row per estimate.
 
-use argus_core_math::{Gaussian, Vector};
+use argus_core_math::Gaussian;
 use argus_filters::{two_point_cv2, two_point_cv3};
+use argus_sensors::Measurement;
 
 use super::rows::{Column, Point, TrackRows};
 use super::single_imm;
@@ -13,7 +14,7 @@ use crate::error::CliError;
 use crate::estimator::{
     cv_ekf, cv_kf, cv3_ekf, cv3_kf, polar, position, position3, spherical, step,
 };
-use crate::plotfile::{FilePlot, FileValue};
+use crate::plotfile::FilePlot;
 
 /// Runs `estimator` over `plots` (in file order, already checked by `plotfile`).
 ///
@@ -25,7 +26,7 @@ pub(super) fn run(
     estimator: &Estimator,
     plots: &[FilePlot],
 ) -> Result<TrackRows, CliError> {
-    let three_d = plots.first().is_some_and(|p| p.value.dim() == 3);
+    let three_d = plots.first().is_some_and(|p| p.measurement().dim() == 3);
     match (estimator, three_d) {
         (Estimator::KfConverted(sa), false) => {
             let f = cv_kf(*sa)?;
@@ -50,11 +51,11 @@ pub(super) fn run(
                 |p| ctx.convert2(p),
                 two_point_cv2,
                 |x, dt, p| {
-                    let post = if let FileValue::Polar { range, azimuth } = p.value {
+                    let post = if let Measurement::Polar(z) = p.measurement() {
                         let s = ctx.sensor(p)?;
                         let (sr, sa) = ctx.polar_sigmas(s)?;
                         let m = polar([s.position[0], s.position[1]], sr, sa)?;
-                        step(&f, x, dt, &m, &Vector::<2>::new(range, azimuth))
+                        step(&f, x, dt, &m, &z.to_vector())
                     } else {
                         let (z, r) = ctx.convert2(p)?;
                         step(&f, x, dt, &position(r)?, &z)
@@ -99,15 +100,10 @@ pub(super) fn run(
                 |p| ctx.convert3(p),
                 two_point_cv3,
                 |x, dt, p| {
-                    let post = if let FileValue::Spherical {
-                        range,
-                        azimuth,
-                        elevation,
-                    } = p.value
-                    {
+                    let post = if let Measurement::Spherical(z) = p.measurement() {
                         let s = ctx.sensor(p)?;
                         let m = spherical(s.position, ctx.spherical_sigmas(s)?)?;
-                        step(&f, x, dt, &m, &Vector::<3>::new(range, azimuth, elevation))
+                        step(&f, x, dt, &m, &z.to_vector())
                     } else {
                         let (z, r) = ctx.convert3(p)?;
                         step(&f, x, dt, &position3(r)?, &z)
@@ -130,11 +126,11 @@ fn track_loop<const D: usize, const N: usize>(
 ) -> Result<TrackRows, CliError> {
     let start = two_point(ctx, plots, convert, init)?;
     let mut rows = TrackRows::new(Column::single(D, 0, false));
-    let (mut x, mut t) = (start.estimate, start.second.time);
+    let (mut x, mut t) = (start.estimate, start.second.time());
     rows.push(&Point::new(t, &x));
     for p in start.rest {
-        x = update(&x, p.time - t, p)?;
-        t = p.time;
+        x = update(&x, p.time() - t, p)?;
+        t = p.time();
         rows.push(&Point::new(t, &x));
     }
     Ok(rows)

@@ -8,16 +8,17 @@ use argus_core_math::Gaussian;
 use argus_filters::{Kf, two_point_cv2};
 use argus_imm::{
     Imm, ImmError, ImmEstimate, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid,
-    NoiseVariances, PolarPlot, UnbiasedConversion,
+    NoiseVariances, UnbiasedConversion,
 };
 use argus_motion_models::PlanarModel;
+use argus_sensors::Measurement;
 
 use super::rows::{Column, Point, TrackRows};
 use super::spec::{ImmSpec, MAX_MODELS, MultiSpec};
 use super::start::{Ctx, too_few, two_point};
 use crate::error::CliError;
 use crate::estimator::position;
-use crate::plotfile::{FilePlot, FileValue};
+use crate::plotfile::FilePlot;
 
 /// Calls `$f::<R>(args…)` for the run-time mode count `R ∈ 1 … MAX_MODELS`.
 macro_rules! by_modes {
@@ -107,20 +108,20 @@ fn track_imm<const R: usize>(
     let start = two_point(ctx, plots, |p| ctx.convert2(p), two_point_cv2)?;
     let mut est = start_estimate::<R>(spec, start.estimate)?;
     let mut rows = TrackRows::new(Column::single(2, R, false));
-    let mut t = start.second.time;
+    let mut t = start.second.time();
     let mu = est.mode_probabilities();
     rows.push(&Point::new(t, &est.combined()?).modes(Some(&mu)));
     for p in start.rest {
         let (z, r) = ctx.convert2(p)?;
         let meas = position(r)?;
-        let dt = p.time - t;
+        let dt = p.time() - t;
         let upd = if dt == 0.0 {
             imm.update(&est.into_prediction(), &meas, &z)
         } else {
             imm.step(&est, dt, &meas, &z)
         };
         est = upd.map_err(ctx.imm_error(p))?.estimate;
-        t = p.time;
+        t = p.time();
         let c = est.combined().map_err(ctx.imm_error(p))?;
         rows.push(&Point::new(t, &c).modes(Some(&est.mode_probabilities())));
     }
@@ -183,7 +184,7 @@ fn track_multi_k<const R: usize, const K: usize>(
     let mut est =
         MultiImmEstimate::<4, R, K>::new(start_estimate::<R>(spec, start.estimate)?, reference);
     let mut rows = TrackRows::new(Column::single(2, R, true));
-    let mut t = p2.time;
+    let mut t = p2.time();
     let push = |rows: &mut TrackRows, t: f64, est: &MultiImmEstimate<4, R, K>, c: &Gaussian<4>| {
         let mu = est.mode_probabilities();
         rows.push(
@@ -194,25 +195,24 @@ fn track_multi_k<const R: usize, const K: usize>(
     };
     push(&mut rows, t, &est, &est.combined()?);
     for p in plots.iter().take(2).chain(start.rest) {
-        if p.sensor != sensor.id {
+        if p.sensor() != sensor.id {
             return Err(not_polar(
                 p,
-                &format!("plot of sensor {} after sensor {}", p.sensor, sensor.id),
+                &format!("plot of sensor {} after sensor {}", p.sensor(), sensor.id),
             ));
         }
-        let FileValue::Polar { range, azimuth } = p.value else {
+        let Measurement::Polar(plot) = p.measurement() else {
             return Err(not_polar(p, "a Cartesian report"));
         };
         if p.line <= p2.line {
             continue;
         }
-        let plot = PolarPlot::new(range, azimuth).map_err(ctx.imm_error(p))?;
-        let dt = p.time - t;
+        let dt = p.time() - t;
         est = multi
-            .step(&est, dt, &plot, &conv)
+            .step(&est, dt, plot, &conv)
             .map_err(ctx.imm_error(p))?
             .estimate;
-        t = p.time;
+        t = p.time();
         let c = est.combined().map_err(ctx.imm_error(p))?;
         push(&mut rows, t, &est, &c);
     }

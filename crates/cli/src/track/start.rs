@@ -6,11 +6,12 @@ use std::path::Path;
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::FilterError;
+use argus_sensors::Measurement;
 
 use super::spec::Sensor;
 use crate::error::CliError;
 use crate::estimator::{unbiased, unbiased3};
-use crate::plotfile::{FilePlot, FileValue};
+use crate::plotfile::FilePlot;
 
 /// A converted plot: a global Cartesian position and its covariance.
 pub(super) type Converted<const D: usize> = (Vector<D>, Matrix<D, D>);
@@ -27,7 +28,7 @@ impl Ctx<'_> {
     pub(super) fn sensor(&self, p: &FilePlot) -> Result<&Sensor, CliError> {
         self.sensors
             .iter()
-            .find(|s| s.id == p.sensor)
+            .find(|s| s.id == p.sensor())
             .ok_or_else(|| {
                 CliError::input(
                     self.plots_path,
@@ -35,7 +36,7 @@ impl Ctx<'_> {
                     Some("sensor"),
                     format!(
                         "unknown sensor {} (not in {})",
-                        p.sensor,
+                        p.sensor(),
                         self.config.display()
                     ),
                 )
@@ -107,19 +108,16 @@ impl Ctx<'_> {
     /// sensor's σ, Cartesian reports as given.
     pub(super) fn convert2(&self, p: &FilePlot) -> Result<Converted<2>, CliError> {
         let s = self.sensor(p)?;
-        match p.value {
-            FileValue::Cartesian { x, y, cov } => Ok((
-                Vector::<2>::new(x, y),
-                Matrix::<2, 2>::new(cov[0], cov[1], cov[1], cov[2]),
-            )),
-            FileValue::Polar { range, azimuth } => {
+        match p.measurement() {
+            Measurement::Cartesian2(c) => Ok((*c.position(), *c.covariance())),
+            Measurement::Polar(m) => {
                 let (sr, sa) = self.polar_sigmas(s)?;
-                let (z, r) = unbiased(range, azimuth, sr, sa).map_err(|e| {
+                let (z, r) = unbiased(m.range(), m.azimuth(), sr, sa).map_err(|e| {
                     CliError::input(self.plots_path, Some(p.line), Some("range"), e.to_string())
                 })?;
                 Ok((z + Vector::<2>::new(s.position[0], s.position[1]), r))
             }
-            FileValue::Spherical { .. } | FileValue::Cartesian3 { .. } => Err(self.wrong_dim(p)),
+            Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(self.wrong_dim(p)),
         }
     }
 
@@ -127,25 +125,17 @@ impl Ctx<'_> {
     /// Cartesian reports as given.
     pub(super) fn convert3(&self, p: &FilePlot) -> Result<Converted<3>, CliError> {
         let s = self.sensor(p)?;
-        match p.value {
-            FileValue::Cartesian3 { p: q, cov } => Ok((
-                Vector::<3>::new(q[0], q[1], q[2]),
-                Matrix::<3, 3>::new(
-                    cov[0], cov[1], cov[2], cov[1], cov[3], cov[4], cov[2], cov[4], cov[5],
-                ),
-            )),
-            FileValue::Spherical {
-                range,
-                azimuth,
-                elevation,
-            } => {
+        match p.measurement() {
+            Measurement::Cartesian3(c) => Ok((*c.position(), *c.covariance())),
+            Measurement::Spherical(m) => {
                 let sig = self.spherical_sigmas(s)?;
-                let (z, r) = unbiased3(range, azimuth, elevation, sig).map_err(|e| {
-                    CliError::input(self.plots_path, Some(p.line), Some("range"), e.to_string())
-                })?;
+                let (z, r) =
+                    unbiased3(m.range(), m.azimuth(), m.elevation(), sig).map_err(|e| {
+                        CliError::input(self.plots_path, Some(p.line), Some("range"), e.to_string())
+                    })?;
                 Ok((z + Vector::<3>::from(s.position), r))
             }
-            FileValue::Polar { .. } | FileValue::Cartesian { .. } => Err(self.wrong_dim(p)),
+            Measurement::Polar(_) | Measurement::Cartesian2(_) => Err(self.wrong_dim(p)),
         }
     }
 }
@@ -186,7 +176,7 @@ pub(super) fn two_point<'p, const D: usize, const N: usize>(
     };
     let (z1, r1) = convert(p1)?;
     let (z2, r2) = convert(p2)?;
-    let estimate = init(&z1, &r1, &z2, &r2, p2.time - p1.time).map_err(|e| {
+    let estimate = init(&z1, &r1, &z2, &r2, p2.time() - p1.time()).map_err(|e| {
         CliError::input(
             ctx.plots_path,
             Some(p2.line),
