@@ -11,6 +11,9 @@ pub enum RegistrationError {
     /// A numerical check failed (non-finite value, covariance not positive definite).
     #[error(transparent)]
     Math(#[from] MathError),
+    /// The local Kalman filter refused a step (non-positive-definite `S` or posterior).
+    #[error(transparent)]
+    Filter(#[from] argus_filters::FilterError),
     /// A sensor-model check failed (non-finite plot, range not positive).
     #[error(transparent)]
     Sensor(#[from] SensorError),

@@ -5,9 +5,10 @@
 //! State order `[x, vx, y, vy]` (the workspace convention; the paper orders
 //! `[x, y, vx, vy]`), so `H = [[1,0,0,0],[0,0,1,0]]`.
 
-use argus_core_math::{
-    Gaussian, Matrix, SpdFactor, Vector, check_finite_matrix, check_finite_vector, joseph_update,
-};
+use argus_core_math::{Gaussian, Matrix, Vector, check_finite_matrix, check_finite_vector};
+use argus_filters::{GaussianFilter, Kf};
+use argus_motion_models::{Cv2D, LinearMotionModel, MotionModel};
+use argus_sensors::CartesianPosition;
 
 use crate::error::{RegistrationError, finite};
 use crate::polar::ConvertedPlot;
@@ -134,51 +135,40 @@ impl BiasedTrack {
 /// with power spectral density `q̃` (m²/s³), on biased plots, propagating `G`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BiasedLocalFilter {
-    q: f64,
+    kf: Kf<Cv2D>,
 }
 
 impl BiasedLocalFilter {
-    /// A filter with process-noise power spectral density `q̃ ≥ 0` (m²/s³).
+    /// A filter with process-noise power spectral density `q̃ ≥ 0` (m²/s³): the workspace's
+    /// Kalman filter on the continuous-white-noise CV model ([`Cv2D::continuous`]).
     ///
     /// # Errors
     /// [`RegistrationError::InvalidParameter`] for a negative or non-finite `q̃`.
     pub fn new(q_tilde: f64) -> Result<Self, RegistrationError> {
         finite("process noise PSD", q_tilde)?;
-        if q_tilde < 0.0 {
-            return Err(RegistrationError::InvalidParameter {
-                what: "process noise PSD",
-                value: q_tilde,
-                reason: "must be non-negative",
-            });
-        }
-        Ok(Self { q: q_tilde })
+        let model = Cv2D::continuous(q_tilde).map_err(|_| RegistrationError::InvalidParameter {
+            what: "process noise PSD",
+            value: q_tilde,
+            reason: "must be non-negative",
+        })?;
+        Ok(Self { kf: Kf::new(model) })
     }
 
     /// `Φ(T)`, eq (42), for `[x, vx, y, vy]`.
     #[must_use]
     pub fn transition(&self, dt: f64) -> Matrix<4, 4> {
-        let mut f = Matrix::<4, 4>::identity();
-        f[(0, 1)] = dt;
-        f[(2, 3)] = dt;
-        f
+        self.kf.model().transition(dt)
     }
 
     /// `Q(T)`, eq (43) (DCWNA), for `[x, vx, y, vy]`.
     #[must_use]
     pub fn process_noise(&self, dt: f64) -> Matrix<4, 4> {
-        let mut q = Matrix::<4, 4>::zeros();
-        for a in 0..2 {
-            let i = 2 * a;
-            q[(i, i)] = dt.powi(3) / 3.0 * self.q;
-            q[(i, i + 1)] = dt.powi(2) / 2.0 * self.q;
-            q[(i + 1, i)] = dt.powi(2) / 2.0 * self.q;
-            q[(i + 1, i + 1)] = dt * self.q;
-        }
-        q
+        self.kf.model().process_noise(&Vector::<4>::zeros(), dt)
     }
 
     /// Predicts the track to `time ≥ track.time()`, eqs (13)–(14): `X̂ᵇ⁻ = Φ X̂ᵇ`,
-    /// `P⁻ = Φ P Φᵀ + Q`, `G⁻ = Φ G`. A zero interval returns the track unchanged.
+    /// `P⁻ = Φ P Φᵀ + Q` (the Kalman filter's prediction), `G⁻ = Φ G`. A zero interval
+    /// returns the track unchanged.
     ///
     /// # Errors
     /// [`RegistrationError::TimeNotIncreasing`] when `time` is earlier than the track,
@@ -200,19 +190,18 @@ impl BiasedLocalFilter {
         if dt == 0.0 {
             return Ok(*track);
         }
-        let f = self.transition(dt);
-        let mean = f * track.estimate.mean();
-        let cov = f * track.estimate.cov() * f.transpose() + self.process_noise(dt);
+        let estimate = self.kf.predict(&track.estimate, dt)?;
         Ok(BiasedTrack {
-            estimate: Gaussian::from_symmetrized(mean, &cov)?,
-            g: f * track.g,
+            estimate,
+            g: self.transition(dt) * track.g,
             time,
         })
     }
 
-    /// Predicts to the plot's time and updates with it, eqs (16)–(21) with eq (20)
-    /// corrected to `G⁺ = (I − K H) Φ G + K B C` (the paper prints `(I − K) H Φ G`, which
-    /// does not even have the right dimensions). `P` uses the Joseph form.
+    /// Predicts to the plot's time and updates with it through the Kalman filter (Joseph
+    /// form), eqs (16)–(21), and carries `G` with eq (20) corrected to
+    /// `G⁺ = (I − K H) Φ G + K B C` (the paper prints `(I − K) H Φ G`, which does not even
+    /// have the right dimensions), `K` the filter's gain.
     ///
     /// # Errors
     /// As [`Self::predict`], and [`RegistrationError::Math`] when `S` or the posterior is
@@ -224,22 +213,15 @@ impl BiasedLocalFilter {
         plot: &ConvertedPlot,
     ) -> Result<BiasedTrack, RegistrationError> {
         let pred = self.predict(track, plot.time())?;
-        let H = position_matrix();
-        let P = pred.estimate.cov();
-        let R = plot.noise();
-        let S = H * P * H.transpose() + R;
-        let sf = SpdFactor::new_symmetric(
-            &argus_core_math::symmetrize(&S),
-            "local innovation covariance S",
-        )?;
-        let K: Matrix<4, 2> = sf.solve_matrix(&(H * P)).transpose();
-        let nu = plot.z() - H * pred.estimate.mean();
-        let mean = pred.estimate.mean() + K * nu;
-        let cov = joseph_update(P, &K, &H, R);
-        let G = (Matrix::<4, 4>::identity() - K * H) * pred.g + K * plot.bias_jacobian();
+        let sensor = CartesianPosition::<4, 2>::new([0, 2], *plot.noise())?;
+        let mp = self.kf.predict_measurement(&pred.estimate, &sensor)?;
+        let estimate = mp.update(&pred.estimate, &(plot.z() - mp.z_pred()))?;
+        let K = mp.gain();
+        let G = (Matrix::<4, 4>::identity() - K * position_matrix()) * pred.g
+            + K * plot.bias_jacobian();
         check_finite_matrix(&G, "bias sensitivity G")?;
         Ok(BiasedTrack {
-            estimate: Gaussian::from_symmetrized(mean, &cov)?,
+            estimate,
             g: G,
             time: plot.time(),
         })
