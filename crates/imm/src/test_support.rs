@@ -1,116 +1,35 @@
-//! Test-only stand-ins: a linear Kalman filter, the paper's CV and fixed-rate CT models and
-//! the gimpo truth with rotating-beam timing. The library never uses them.
+//! Test fixtures: the paper's IMM built from the workspace's Kalman filter and planar models,
+//! and the gimpo truth with rotating-beam timing. The library never uses them.
 #![allow(clippy::unwrap_used, clippy::expect_used, non_snake_case)]
 
 use argus_core_math::{Gaussian, Matrix, Vector};
-use argus_filters::{CovarianceForm, FilterError, GaussianFilter, MeasurementPrediction};
-use argus_motion_models::{LinearMotionModel, MotionModel};
-use argus_sensors::MeasurementModel;
+use argus_motion_models::{CoordinatedTurn, Cv2D, LinearMotionModel};
 use argus_sensors::PolarMeasurement;
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};
 
 use crate::{Imm, ImmEstimate, MarkovMatrix, NoiseVariances, unbiased_conversion};
 
-/// Linear KF (seed 000 eqs (3)–(4)).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Kf<Mo>(pub(crate) Mo);
+/// The workspace's Kalman filter (seed 000 eqs (3)–(4)) on the workspace's planar models.
+pub(crate) use argus_filters::Kf;
+/// CV (eq 15) or fixed-rate CT (eq 16) with `Q = σv² Γ Γᵀ` (eqs 17–18): the motion-models crate's.
+pub(crate) use argus_motion_models::PlanarModel as Motion;
 
-impl<const N: usize, Mo: LinearMotionModel<N>> GaussianFilter<N> for Kf<Mo> {
-    fn predict(&self, prior: &Gaussian<N>, dt: f64) -> Result<Gaussian<N>, FilterError> {
-        argus_filters::check_dt(dt)?;
-        let F = self.0.transition(dt);
-        let Q = self.0.process_noise(prior.mean(), dt);
-        Ok(Gaussian::from_symmetrized(
-            F * prior.mean(),
-            &(F * prior.cov() * F.transpose() + Q),
-        )?)
-    }
-    fn predict_measurement<const M: usize, Me: MeasurementModel<N, M>>(
-        &self,
-        pred: &Gaussian<N>,
-        meas: &Me,
-    ) -> Result<MeasurementPrediction<N, M>, FilterError> {
-        let H = meas.jacobian(pred.mean());
-        let R = meas.noise(pred.mean());
-        let cross = pred.cov() * H.transpose();
-        MeasurementPrediction::new(
-            meas.predict(pred.mean()),
-            H * cross + R,
-            cross,
-            Some(H),
-            R,
-            CovarianceForm::Joseph,
-        )
-    }
+/// The CV model with white-acceleration σ `sv` (m/s²).
+pub(crate) fn cv(sv: f64) -> Motion {
+    Motion::from(Cv2D::discrete(sv).unwrap())
 }
 
-fn gamma_q(T: f64, sv: f64) -> Matrix<4, 4> {
-    let G = Matrix::<4, 2>::new(T * T / 2.0, 0.0, T, 0.0, 0.0, T * T / 2.0, 0.0, T);
-    G * G.transpose() * (sv * sv)
-}
-
-/// CV (eq 15) or fixed-rate CT (eq 16) with `Q = σv² Γ Γᵀ` (eqs 17–18).
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum Motion {
-    Cv { sv: f64 },
-    Ct { omega: f64, sv: f64 },
-}
-
-impl MotionModel<4> for Motion {
-    fn propagate(&self, x: &Vector<4>, dt: f64) -> Vector<4> {
-        self.transition(dt) * x
-    }
-    fn jacobian(&self, _x: &Vector<4>, dt: f64) -> Matrix<4, 4> {
-        self.transition(dt)
-    }
-    fn process_noise(&self, _x: &Vector<4>, dt: f64) -> Matrix<4, 4> {
-        match *self {
-            Motion::Cv { sv } | Motion::Ct { sv, .. } => gamma_q(dt, sv),
-        }
-    }
-}
-
-impl LinearMotionModel<4> for Motion {
-    fn transition(&self, T: f64) -> Matrix<4, 4> {
-        match *self {
-            Motion::Cv { .. } => Matrix::<4, 4>::new(
-                1.0, T, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, T, 0.0, 0.0, 0.0, 1.0,
-            ),
-            Motion::Ct { omega: w, .. } => {
-                let (s, c) = (w * T).sin_cos();
-                Matrix::<4, 4>::new(
-                    1.0,
-                    s / w,
-                    0.0,
-                    -(1.0 - c) / w,
-                    0.0,
-                    c,
-                    0.0,
-                    -s,
-                    0.0,
-                    (1.0 - c) / w,
-                    1.0,
-                    s / w,
-                    0.0,
-                    s,
-                    0.0,
-                    c,
-                )
-            }
-        }
-    }
+/// The fixed-rate coordinated turn at `omega` (rad/s) with σ `sv` (m/s²).
+pub(crate) fn ct(omega: f64, sv: f64) -> Motion {
+    Motion::from(CoordinatedTurn::new(omega, sv).unwrap())
 }
 
 /// The paper's IMM: CV (0.1 m/s²) and CT ±3°/s (0.5 m/s²), eq (20).
 pub(crate) fn paper_imm() -> Imm<Kf<Motion>, 4, 3> {
     let w = 3.0_f64.to_radians();
     Imm::new(
-        [
-            Kf(Motion::Cv { sv: 0.1 }),
-            Kf(Motion::Ct { omega: w, sv: 0.5 }),
-            Kf(Motion::Ct { omega: -w, sv: 0.5 }),
-        ],
+        [Kf::new(cv(0.1)), Kf::new(ct(w, 0.5)), Kf::new(ct(-w, 0.5))],
         MarkovMatrix::new([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]]).unwrap(),
     )
     .unwrap()
@@ -132,9 +51,9 @@ const SEGMENTS: [(f64, f64, f64); 10] = [
 
 fn advance(x: Vector<4>, w: f64, t: f64) -> Vector<4> {
     if w.abs() < 1e-12 {
-        Motion::Cv { sv: 0.0 }.transition(t) * x
+        cv(0.0).transition(t) * x
     } else {
-        Motion::Ct { omega: w, sv: 0.0 }.transition(t) * x
+        ct(w, 0.0).transition(t) * x
     }
 }
 

@@ -9,7 +9,7 @@ use argus_sensors::PolarMeasurement;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
-use crate::test_support::{Kf, Motion, beam_times, paper_imm, plots, truth_at, two_point};
+use crate::test_support::{Kf, Motion, beam_times, ct, cv, paper_imm, plots, truth_at, two_point};
 use crate::*;
 
 fn meas(r: f64) -> PositionMeasurement<4> {
@@ -28,7 +28,7 @@ fn start() -> Gaussian<4> {
 fn single_mode_imm_is_the_kalman_filter() {
     // With one mode and Π = [1] the IMM reduces to its filter exactly, and ln Λ is the
     // filter's innovation log-likelihood.
-    let f = Kf(Motion::Cv { sv: 0.3 });
+    let f = Kf::new(cv(0.3));
     let imm = Imm::new([f], MarkovMatrix::new([[1.0]]).unwrap()).unwrap();
     let est = ImmEstimate::from_common(start(), [1.0]).unwrap();
     let z = Vector::<2>::new(170.0, -20.0);
@@ -45,7 +45,7 @@ fn single_mode_imm_is_the_kalman_filter() {
 fn mode_probabilities_and_mixing_match_a_hand_computation() {
     // Two modes (CV with different process noise), μ = (0.7, 0.3), Π = [[0.9, 0.1], [0.2, 0.8]].
     // Reference: eqs (1), (2), (6) evaluated directly in linear space.
-    let f = [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 3.0 })];
+    let f = [Kf::new(cv(0.1)), Kf::new(cv(3.0))];
     let pi = [[0.9, 0.1], [0.2, 0.8]];
     let imm = Imm::new(f, MarkovMatrix::new(pi).unwrap()).unwrap();
     let g1 = start();
@@ -89,7 +89,7 @@ fn linear_and_log_space_updates_agree() {
     // in log space): the probabilities and ln Λ agree to round-off (1e-12: a few dozen
     // operations on numbers of order one).
     let imm = Imm::new(
-        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        [Kf::new(cv(0.1)), Kf::new(cv(20.0))],
         MarkovMatrix::new([[0.9, 0.1], [0.2, 0.8]]).unwrap(),
     )
     .unwrap();
@@ -123,7 +123,7 @@ fn a_mode_below_f64_keeps_its_log_probability_through_cycles() {
     // eq (6) must still hold for the logarithms: ln μ₀' = ln μ₀ + ln Λ₀ − ln Λ (relative
     // 1e-12: round-off of a few additions of numbers up to ~1e3).
     let mix = Imm::new(
-        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        [Kf::new(cv(0.1)), Kf::new(cv(20.0))],
         MarkovMatrix::new([[0.5, 0.5], [0.5, 0.5]]).unwrap(),
     )
     .unwrap();
@@ -135,7 +135,7 @@ fn a_mode_below_f64_keeps_its_log_probability_through_cycles() {
     let l0 = first.log_mode_probabilities()[0];
     assert!(first.mode_probabilities()[0] == 0.0 && l0.is_finite() && l0 < -745.0);
     let stay = Imm::new(
-        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        [Kf::new(cv(0.1)), Kf::new(cv(20.0))],
         MarkovMatrix::new([[1.0, 0.0], [0.0, 1.0]]).unwrap(),
     )
     .unwrap();
@@ -155,7 +155,7 @@ fn tiny_likelihoods_do_not_underflow() {
     // f64; linear-space normalisation would give 0/0. In log space the probabilities stay
     // finite and sum to one, and the mode with the larger S is preferred.
     let imm = Imm::new(
-        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        [Kf::new(cv(0.1)), Kf::new(cv(20.0))],
         MarkovMatrix::new([[0.5, 0.5], [0.5, 0.5]]).unwrap(),
     )
     .unwrap();
@@ -172,7 +172,7 @@ fn tiny_likelihoods_do_not_underflow() {
     // Mixing keeps it: with Π = I, mode 0 is fed only by itself (μ ≈ e^{-1e6}, which the
     // scaled linear mixing cannot represent); the log-space fallback gives ln μ̄₀ = ln μ₀.
     let stay = Imm::new(
-        [Kf(Motion::Cv { sv: 0.1 }), Kf(Motion::Cv { sv: 20.0 })],
+        [Kf::new(cv(0.1)), Kf::new(cv(20.0))],
         MarkovMatrix::new([[1.0, 0.0], [0.0, 1.0]]).unwrap(),
     )
     .unwrap();
@@ -226,8 +226,8 @@ fn bad_input_is_rejected_and_the_estimate_is_untouched() {
     assert!(EvidenceNoiseImm::new(paper_imm(), 0.2, 1.5, None).is_err());
     assert!(EvidenceNoiseImm::new(paper_imm(), 0.2, 1.0, Some(1.0)).is_err());
     assert!(EvidenceNoiseImm::new(paper_imm(), f64::NAN, 1.0, None).is_err());
-    assert!(Embedded::<Motion, 4, 3>::new(Motion::Cv { sv: 1.0 }, 0.0).is_err());
-    assert!(Embedded::<Motion, 4, 5>::new(Motion::Cv { sv: 1.0 }, -1.0).is_err());
+    assert!(Embedded::<Motion, 4, 3>::new(cv(1.0), 0.0).is_err());
+    assert!(Embedded::<Motion, 4, 5>::new(cv(1.0), -1.0).is_err());
 }
 
 #[test]
@@ -258,7 +258,7 @@ fn multi_imm_bad_steps_leave_the_estimate_untouched() {
 fn embedded_model_moves_the_shared_states_and_holds_the_rest() {
     // CV (4 states) in a 5-state [x, vx, y, vy, ω] common state: F = diag(F_cv, 1),
     // Q = diag(Q_cv, q dt).
-    let cv = Motion::Cv { sv: 0.5 };
+    let cv = cv(0.5);
     let e = Embedded::<Motion, 4, 5>::new(cv, 1e-4).unwrap();
     let x = Vector::<5>::new(1.0, 2.0, 3.0, 4.0, 0.05);
     let y = e.propagate(&x, 2.0);
@@ -320,12 +320,9 @@ fn mc_imm() -> Imm<Kf<Motion>, 4, 3> {
     let w = v[1].to_radians();
     Imm::new(
         [
-            Kf(Motion::Cv { sv: v[0] }),
-            Kf(Motion::Ct { omega: w, sv: v[2] }),
-            Kf(Motion::Ct {
-                omega: -w,
-                sv: v[2],
-            }),
+            Kf::new(cv(v[0])),
+            Kf::new(ct(w, v[2])),
+            Kf::new(ct(-w, v[2])),
         ],
         MarkovMatrix::new([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]]).unwrap(),
     )
