@@ -80,6 +80,9 @@ pub(crate) enum CliError {
     /// The multi-target tracker rejected a configuration or a plot.
     #[error("tracker: {0}")]
     Tracker(#[from] argus_tracker::TrackerError),
+    /// Scoring tracks against a truth failed (a malformed file names file:line:field).
+    #[error("score: {0}")]
+    Score(#[from] argus_score::ScoreError),
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {
