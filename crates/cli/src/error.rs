@@ -76,6 +76,9 @@ pub(crate) enum CliError {
     /// A scenario failed (a bad `--set` value is printed the way the command spells it).
     #[error("{}", scenario_message(.0))]
     Scenario(ScenarioError),
+    /// Scoring tracks against a truth failed (a malformed file names file:line:field).
+    #[error("score: {0}")]
+    Score(#[from] argus_score::ScoreError),
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {

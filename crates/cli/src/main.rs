@@ -11,9 +11,9 @@ mod plotfile;
 mod progress;
 mod render;
 mod runs_file;
+mod score;
 mod summary;
 mod track;
-mod track_multi;
 
 use std::io::IsTerminal;
 use std::ops::Range;
@@ -100,6 +100,25 @@ enum Command {
         /// Track file to write (CSV).
         #[arg(long)]
         out: PathBuf,
+    },
+    /// Scores a tracks CSV (confirmed rows) against a truth CSV: completeness, breaks,
+    /// swaps, spurious time, RMSE, GOSPA (docs/scoring.md); the score as JSON in --out.
+    Score {
+        /// Tracks file (the tracks CSV of `argus track`, or another tracker's in its columns).
+        #[arg(long)]
+        tracks: PathBuf,
+        /// Truth file (`t,target,x,vx,y,vy`, as `argus simulate` writes it).
+        #[arg(long)]
+        truth: PathBuf,
+        /// Score file to write (JSON).
+        #[arg(long)]
+        out: PathBuf,
+        /// Grid step (s).
+        #[arg(long, default_value_t = 5.0)]
+        step: f64,
+        /// Assignment cut-off distance (m).
+        #[arg(long, default_value_t = 1000.0)]
+        cutoff: f64,
     },
 }
 
@@ -284,6 +303,18 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         Command::Track { config, plots, out } => {
             let n = track::run(&config, &plots, &out)?;
             println!("wrote {} ({n} track points)", out.display());
+        }
+        Command::Score {
+            tracks,
+            truth,
+            out,
+            step,
+            cutoff,
+        } => {
+            for line in score::run(&tracks, &truth, &out, step, cutoff)? {
+                println!("{line}");
+            }
+            println!("wrote {}", out.display());
         }
     }
     Ok(())

@@ -1,0 +1,41 @@
+//! What `argus track` runs: the configuration file read once ([`super::schema`]), checked
+//! once ([`super::spec`]) and turned into a [`Job`]: one estimator over the whole file, or
+//! the multi-target tracker when the file has a `[tracker]` table.
+
+use std::path::Path;
+
+use super::schema::{self, Source};
+use super::spec::{self, Estimator, Sensor};
+use super::tracker_config::{self, MultiTarget};
+use crate::error::CliError;
+
+/// A checked `argus track` job.
+#[derive(Debug, Clone)]
+pub(super) enum Job {
+    /// One target: `estimator` over every plot of the file, in order.
+    Single {
+        sensors: Vec<Sensor>,
+        estimator: Estimator,
+    },
+    /// The multi-target tracker.
+    Multi(MultiTarget),
+}
+
+/// Reads and checks the configuration at `path`. The sensors and the estimator are
+/// checked first, by the same rules for both jobs; then the `[tracker]` table.
+///
+/// # Errors
+/// [`CliError::Input`] naming the file, the line and the field of the first bad value;
+/// [`CliError::Io`]; [`CliError::Motion`] for a model the motion-model crate refuses.
+pub(super) fn load(path: &Path) -> Result<Job, CliError> {
+    let (text, file) = schema::read(path)?;
+    let src = Source { path, text: &text };
+    let sensors = spec::sensors(src, &file.sensors)?;
+    let estimator = spec::estimator(src, &file.estimator)?;
+    Ok(match &file.tracker {
+        None => Job::Single { sensors, estimator },
+        Some(table) => Job::Multi(tracker_config::build(
+            src, &file, table, &sensors, &estimator,
+        )?),
+    })
+}

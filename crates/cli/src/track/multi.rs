@@ -1,0 +1,245 @@
+//! The multi-target job: the tracker ([`argus_tracker`]) over the plot file, the plots
+//! grouped into scans by `(time, sensor)` in file order, one row per track per scan with
+//! its id and status, and a JSON summary (see `docs/FORMATS.md`).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use argus_sensors::Measurement;
+use argus_tracker::{
+    AssociationConfig, DeletionReason, EstimatorConfig, Plot, SensorId, Track, TrackStatus,
+    Tracker, TrackerConfig, TrackerError,
+};
+
+use super::rows::{Column, Point, TrackRows};
+use super::tracker_config::MultiTarget;
+use crate::error::CliError;
+use crate::output::write_atomic;
+use crate::plotfile::FilePlot;
+
+/// Where the run's inputs and outputs are, for errors and the summary.
+pub(super) struct Files<'a> {
+    /// The configuration.
+    pub(super) config: &'a Path,
+    /// The plot file.
+    pub(super) plots: &'a Path,
+    /// The tracks CSV to write.
+    pub(super) out: &'a Path,
+}
+
+/// The tracks CSV's columns for a configuration: the IMMs add the mode probabilities,
+/// the multi-IMM its noise estimate, track-score management the score.
+fn columns(c: &TrackerConfig) -> Vec<Column> {
+    let (modes, noise) = match c.estimator {
+        EstimatorConfig::Kf | EstimatorConfig::Ekf => (0, false),
+        EstimatorConfig::ImmCv2 { .. } => (2, false),
+        EstimatorConfig::MultiImm { .. } => (2, true),
+    };
+    Column::tracker(modes, noise, c.score.is_some())
+}
+
+/// One row: the track's state at its time, as produced by the scan of `sensor`.
+fn row(out: &mut TrackRows, sensor: SensorId, track: &Track) {
+    let reason = track.deletion().map_or("", reason_name);
+    let mu = track.mode_probabilities();
+    let p = Point::new(track.time(), track.estimate())
+        .of_track(sensor.0, track.id().0, status_name(track.status()), reason)
+        .modes(mu.as_ref().map(<[f64; 2]>::as_slice))
+        .noise(track.noise_estimate())
+        .score(track.score());
+    out.push(&p);
+}
+
+/// The tracker's plot of a file plot: polar plots go in as they are (the tracker converts
+/// them with its sensor's noise, or the EKF and multi-IMM use them directly), Cartesian
+/// reports with their covariance.
+fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliError> {
+    match p.measurement() {
+        Measurement::Cartesian2(_) | Measurement::Polar(_) => Ok(p.plot),
+        Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(CliError::input(
+            files.plots,
+            Some(p.line),
+            None,
+            "the multi-target tracker ([tracker]) tracks 2-D plots (polar or x, y); this plot is 3-D",
+        )),
+    }
+}
+
+/// A [`TrackerError`] about plot `index` of the scan starting at file plot `start`, at
+/// that plot's line.
+fn plot_error(files: &Files<'_>, plots: &[FilePlot], start: usize, e: TrackerError) -> CliError {
+    let (index, field) = match &e {
+        TrackerError::TimeOrder { index, .. } => (*index, Some("t")),
+        TrackerError::UnknownSensor { index, .. } => (*index, Some("sensor")),
+        TrackerError::NoPolarNoise { index, .. } | TrackerError::NotPolar { index, .. } => {
+            (*index, Some("sensor"))
+        }
+        TrackerError::NonPositiveRange { index, .. } | TrackerError::Conversion { index, .. } => {
+            (*index, Some("range"))
+        }
+        TrackerError::NonFinite { index, .. }
+        | TrackerError::PlotCovariance { index, .. }
+        | TrackerError::MixedScan { index, .. } => (*index, None),
+        _ => return CliError::Tracker(e),
+    };
+    let line = plots.get(start + index).map(|p| p.line);
+    CliError::input(files.plots, line, field, format!("tracker: {e}"))
+}
+
+/// The CSV name of a status.
+fn status_name(s: TrackStatus) -> &'static str {
+    match s {
+        TrackStatus::Tentative => "tentative",
+        TrackStatus::Confirmed => "confirmed",
+        TrackStatus::Deleted => "deleted",
+    }
+}
+
+/// The CSV and JSON name of a deletion reason.
+fn reason_name(r: DeletionReason) -> &'static str {
+    match r {
+        DeletionReason::NotConfirmed => "not-confirmed",
+        DeletionReason::Misses => "misses",
+        DeletionReason::CovarianceGrowth => "covariance-growth",
+        DeletionReason::FilterFailure => "filter-failure",
+        DeletionReason::Score => "score",
+    }
+}
+
+/// Every deletion reason, for the summary's zero counts.
+const REASONS: [DeletionReason; 5] = [
+    DeletionReason::NotConfirmed,
+    DeletionReason::Misses,
+    DeletionReason::CovarianceGrowth,
+    DeletionReason::FilterFailure,
+    DeletionReason::Score,
+];
+
+/// Track counts over the run, for the summary.
+#[derive(Debug, Default, serde::Serialize)]
+struct Counts {
+    initiated: usize,
+    confirmed: usize,
+    deleted: usize,
+    deleted_by_reason: BTreeMap<&'static str, usize>,
+    deleted_after_confirmation: usize,
+    tentative_at_end: usize,
+    confirmed_at_end: usize,
+}
+
+/// `<out>.summary.json`.
+#[derive(Debug, serde::Serialize)]
+struct Summary<'a> {
+    command: &'static str,
+    config: String,
+    plots_file: String,
+    tracks_file: String,
+    estimator: &'a str,
+    association: &'static str,
+    confirmation: String,
+    plots: usize,
+    scans: usize,
+    plots_assigned: usize,
+    rows: usize,
+    tracks: Counts,
+}
+
+/// The summary's path beside the tracks file: `<stem>.summary.json`.
+fn summary_path(out: &Path) -> PathBuf {
+    out.with_extension("summary.json")
+}
+
+/// Runs the tracker over `plots` (already read and checked by `plotfile`): every plot is
+/// converted before the first scan, so a bad plot stops the run before any track exists
+/// and nothing is written. Writes the tracks CSV and the summary atomically; returns the
+/// number of rows.
+///
+/// # Errors
+/// [`CliError::Input`] naming the plot file's line for a plot the tracker rejects;
+/// [`CliError::Io`].
+pub(super) fn run(
+    m: &MultiTarget,
+    files: &Files<'_>,
+    plots: &[FilePlot],
+) -> Result<usize, CliError> {
+    let converted = plots
+        .iter()
+        .map(|p| tracker_plot(files, p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let c = &m.config;
+    let mut tracker = Tracker::new(c.clone())?;
+    let mut out = TrackRows::new(columns(c));
+    let mut counts = Counts {
+        deleted_by_reason: REASONS.iter().map(|r| (reason_name(*r), 0)).collect(),
+        ..Counts::default()
+    };
+    let (mut scans, mut assigned) = (0, 0);
+    let mut start = 0;
+    while start < converted.len() {
+        let (t, s) = (converted[start].time(), converted[start].sensor());
+        let len = converted[start..]
+            .iter()
+            .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
+            .count();
+        let report = tracker
+            .process_scan(t, s, &converted[start..start + len])
+            .map_err(|e| plot_error(files, plots, start, e))?;
+        scans += 1;
+        assigned += report.assigned;
+        counts.initiated += report.initiated.len();
+        counts.confirmed += report.confirmed.len();
+        counts.deleted += report.deleted.len();
+        let deleted = tracker.take_deleted();
+        for d in &deleted {
+            if let Some(r) = d.deletion() {
+                *counts.deleted_by_reason.entry(reason_name(r)).or_insert(0) += 1;
+            }
+            if d.confirmed_at().is_some() {
+                counts.deleted_after_confirmation += 1;
+            }
+        }
+        // One row per track of this scan, in id order (live tracks are in id order; a
+        // deleted one goes in its place).
+        let mut all: Vec<&Track> = tracker.tracks().iter().chain(&deleted).collect();
+        all.sort_by_key(|tr| tr.id());
+        for tr in all {
+            row(&mut out, s, tr);
+        }
+        start += len;
+    }
+    for tr in tracker.tracks() {
+        match tr.status() {
+            TrackStatus::Tentative => counts.tentative_at_end += 1,
+            TrackStatus::Confirmed => counts.confirmed_at_end += 1,
+            TrackStatus::Deleted => {}
+        }
+    }
+    let rows = out.rows();
+    write_atomic(files.out, out.into_text().as_bytes())?;
+    let summary = Summary {
+        command: "track",
+        config: files.config.display().to_string(),
+        plots_file: files.plots.display().to_string(),
+        tracks_file: files.out.display().to_string(),
+        estimator: m.estimator,
+        association: match c.association {
+            AssociationConfig::Gnn => "gnn",
+            AssociationConfig::Jpda { .. } => "jpda",
+        },
+        confirmation: match &c.score {
+            Some(_) => "score".to_owned(),
+            None => format!("m-of-n {}/{}", c.confirm_m, c.confirm_n),
+        },
+        plots: plots.len(),
+        scans,
+        plots_assigned: assigned,
+        rows,
+        tracks: counts,
+    };
+    let path = summary_path(files.out);
+    let json = serde_json::to_string_pretty(&summary)
+        .map_err(|e| CliError::io(&path, std::io::Error::other(e.to_string())))?;
+    write_atomic(&path, json.as_bytes())?;
+    println!("wrote {}", path.display());
+    Ok(rows)
+}

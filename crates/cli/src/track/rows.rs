@@ -1,0 +1,288 @@
+//! The tracks CSV of `argus track` (`docs/FORMATS.md`): a column schema and the one
+//! writer of its rows, for both jobs. Numbers are written with `{}` (the shortest text
+//! that reads back to the same `f64`); a value a row does not have is an empty cell.
+
+use std::fmt::Write as _;
+
+use argus_core_math::Gaussian;
+use argus_imm::NoiseVariances;
+
+/// The state components' names, `[x, vx, y, vy, z, vz]`.
+const STATE: [&str; 6] = ["x", "vx", "y", "vy", "z", "vz"];
+
+/// One column of a tracks CSV.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Column {
+    /// `t`: the estimate's time (s).
+    Time,
+    /// `sensor`: the sensor of the scan that produced the row.
+    Sensor,
+    /// `track`: the track's id.
+    Track,
+    /// `status`: tentative, confirmed or deleted.
+    Status,
+    /// `reason`: why a deleted track was deleted (empty otherwise).
+    Reason,
+    /// State component `i` of `[x, vx, y, vy, z, vz]`.
+    State(usize),
+    /// `var_<component>`: the covariance's diagonal entry `i`.
+    Variance(usize),
+    /// `sigma_<axis>`: the standard deviation of position axis `a` (x, y, z).
+    PositionSigma(usize),
+    /// `mu_<j + 1>`: the probability of IMM mode `j`.
+    Mode(usize),
+    /// `sigma_range`: the multi-IMM's range noise estimate (m).
+    SigmaRange,
+    /// `sigma_azimuth_deg`: the multi-IMM's azimuth noise estimate (°).
+    SigmaAzimuthDeg,
+    /// `score`: the track score.
+    Score,
+}
+
+impl Column {
+    /// The header name.
+    fn name(self) -> String {
+        let state = |i: usize| STATE.get(i).copied().unwrap_or("?");
+        match self {
+            Self::Time => "t".into(),
+            Self::Sensor => "sensor".into(),
+            Self::Track => "track".into(),
+            Self::Status => "status".into(),
+            Self::Reason => "reason".into(),
+            Self::State(i) => state(i).into(),
+            Self::Variance(i) => format!("var_{}", state(i)),
+            Self::PositionSigma(a) => format!("sigma_{}", state(2 * a)),
+            Self::Mode(j) => format!("mu_{}", j + 1),
+            Self::SigmaRange => "sigma_range".into(),
+            Self::SigmaAzimuthDeg => "sigma_azimuth_deg".into(),
+            Self::Score => "score".into(),
+        }
+    }
+
+    /// The single-target columns: `t, track`, the CV state of `axes` axes (2 or 3), its
+    /// variances, then `modes` mode probabilities and, with `noise`, the noise estimate.
+    pub(super) fn single(axes: usize, modes: usize, noise: bool) -> Vec<Self> {
+        let n = 2 * axes;
+        let mut c = vec![Self::Time, Self::Track];
+        c.extend((0..n).map(Self::State));
+        c.extend((0..n).map(Self::Variance));
+        c.extend((0..modes).map(Self::Mode));
+        if noise {
+            c.extend([Self::SigmaRange, Self::SigmaAzimuthDeg]);
+        }
+        c
+    }
+
+    /// The multi-target tracker's columns: `t, sensor, track, status, reason`, the 2-D
+    /// state and position σ, then `modes` mode probabilities, the noise estimate (with
+    /// `noise`) and the track score (with `score`).
+    pub(super) fn tracker(modes: usize, noise: bool, score: bool) -> Vec<Self> {
+        let mut c = vec![
+            Self::Time,
+            Self::Sensor,
+            Self::Track,
+            Self::Status,
+            Self::Reason,
+        ];
+        c.extend((0..4).map(Self::State));
+        c.extend([Self::PositionSigma(0), Self::PositionSigma(1)]);
+        c.extend((0..modes).map(Self::Mode));
+        if noise {
+            c.extend([Self::SigmaRange, Self::SigmaAzimuthDeg]);
+        }
+        if score {
+            c.push(Self::Score);
+        }
+        c
+    }
+}
+
+/// One track's estimate at one time, and what a row may say about it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Point<'a> {
+    time: f64,
+    mean: &'a [f64],
+    cov: &'a [f64],
+    dim: usize,
+    sensor: u32,
+    track: u64,
+    status: &'a str,
+    reason: &'a str,
+    modes: Option<&'a [f64]>,
+    noise: Option<NoiseVariances>,
+    score: f64,
+}
+
+impl<'a> Point<'a> {
+    /// The estimate `g` at `time`, of track 1 (the single-target job's one track).
+    pub(super) fn new<const N: usize>(time: f64, g: &'a Gaussian<N>) -> Self {
+        Self {
+            time,
+            mean: g.mean().as_slice(),
+            cov: g.cov().as_slice(),
+            dim: N,
+            sensor: 0,
+            track: 1,
+            status: "",
+            reason: "",
+            modes: None,
+            noise: None,
+            score: 0.0,
+        }
+    }
+
+    /// A tracker's track: its id, status and deletion reason, of the scan of `sensor`.
+    pub(super) fn of_track(
+        self,
+        sensor: u32,
+        track: u64,
+        status: &'a str,
+        reason: &'a str,
+    ) -> Self {
+        Self {
+            sensor,
+            track,
+            status,
+            reason,
+            ..self
+        }
+    }
+
+    /// With IMM mode probabilities (`None`: empty cells).
+    pub(super) fn modes(self, modes: Option<&'a [f64]>) -> Self {
+        Self { modes, ..self }
+    }
+
+    /// With the multi-IMM's noise estimate (`None`: empty cells).
+    pub(super) fn noise(self, noise: Option<NoiseVariances>) -> Self {
+        Self { noise, ..self }
+    }
+
+    /// With a track score.
+    pub(super) fn score(self, score: f64) -> Self {
+        Self { score, ..self }
+    }
+
+    /// The covariance's entry `(i, i)` (column-major storage).
+    fn var(&self, i: usize) -> Option<f64> {
+        self.cov.get(i * self.dim + i).copied()
+    }
+}
+
+/// A tracks CSV being written: the header, then one line per [`TrackRows::push`].
+#[derive(Debug)]
+pub(super) struct TrackRows {
+    columns: Vec<Column>,
+    text: String,
+    rows: usize,
+}
+
+impl TrackRows {
+    /// An empty file with the header of `columns`.
+    pub(super) fn new(columns: Vec<Column>) -> Self {
+        let names: Vec<String> = columns.iter().map(|c| c.name()).collect();
+        let mut text = names.join(",");
+        text.push('\n');
+        Self {
+            columns,
+            text,
+            rows: 0,
+        }
+    }
+
+    /// Appends the row of `p`.
+    pub(super) fn push(&mut self, p: &Point<'_>) {
+        let out = &mut self.text;
+        for (k, c) in self.columns.iter().enumerate() {
+            if k > 0 {
+                out.push(',');
+            }
+            let _ = match *c {
+                Column::Time => write!(out, "{}", p.time),
+                Column::Sensor => write!(out, "{}", p.sensor),
+                Column::Track => write!(out, "{}", p.track),
+                Column::Status => write!(out, "{}", p.status),
+                Column::Reason => write!(out, "{}", p.reason),
+                Column::State(i) => cell(out, p.mean.get(i).copied()),
+                Column::Variance(i) => cell(out, p.var(i)),
+                Column::PositionSigma(a) => cell(out, p.var(2 * a).map(f64::sqrt)),
+                Column::Mode(j) => cell(out, p.modes.and_then(|m| m.get(j).copied())),
+                Column::SigmaRange => cell(out, p.noise.map(|v| v.range().sqrt())),
+                Column::SigmaAzimuthDeg => {
+                    cell(out, p.noise.map(|v| v.azimuth().sqrt().to_degrees()))
+                }
+                Column::Score => write!(out, "{}", p.score),
+            };
+        }
+        out.push('\n');
+        self.rows += 1;
+    }
+
+    /// The rows written so far (the header not counted).
+    pub(super) fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// The file's text.
+    pub(super) fn into_text(self) -> String {
+        self.text
+    }
+}
+
+/// A number, or nothing.
+fn cell(out: &mut String, v: Option<f64>) -> std::fmt::Result {
+    v.map_or(Ok(()), |v| write!(out, "{v}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use argus_core_math::{Matrix, Vector};
+
+    #[test]
+    fn headers_match_the_documented_columns() {
+        // docs/FORMATS.md, "tracks CSV".
+        let names = |c: Vec<Column>| TrackRows::new(c).into_text();
+        assert_eq!(
+            names(Column::single(2, 0, false)),
+            "t,track,x,vx,y,vy,var_x,var_vx,var_y,var_vy\n"
+        );
+        assert_eq!(
+            names(Column::single(3, 0, false)),
+            "t,track,x,vx,y,vy,z,vz,var_x,var_vx,var_y,var_vy,var_z,var_vz\n"
+        );
+        assert_eq!(
+            names(Column::single(2, 3, true)),
+            "t,track,x,vx,y,vy,var_x,var_vx,var_y,var_vy,mu_1,mu_2,mu_3,sigma_range,sigma_azimuth_deg\n"
+        );
+        assert_eq!(
+            names(Column::tracker(2, true, true)),
+            "t,sensor,track,status,reason,x,vx,y,vy,sigma_x,sigma_y,mu_1,mu_2,sigma_range,sigma_azimuth_deg,score\n"
+        );
+    }
+
+    #[test]
+    fn rows_hold_the_diagonal_and_empty_cells() {
+        let g = Gaussian::new(
+            Vector::<4>::new(1.0, 2.0, 3.0, 4.0),
+            Matrix::<4, 4>::from_diagonal(&Vector::<4>::new(4.0, 0.5, 9.0, 0.25)),
+        )
+        .unwrap();
+        let mut single = TrackRows::new(Column::single(2, 2, false));
+        single.push(&Point::new(2.5, &g).modes(Some(&[0.25, 0.75])));
+        assert_eq!(single.rows(), 1);
+        assert!(
+            single
+                .into_text()
+                .ends_with("\n2.5,1,1,2,3,4,4,0.5,9,0.25,0.25,0.75\n")
+        );
+        // The tracker: σ = √ of the position variances (exact here), no modes given.
+        let mut multi = TrackRows::new(Column::tracker(2, true, false));
+        multi.push(&Point::new(5.0, &g).of_track(7, 12, "deleted", "misses"));
+        assert!(
+            multi
+                .into_text()
+                .ends_with("\n5,7,12,deleted,misses,1,2,3,4,2,3,,,,\n")
+        );
+    }
+}

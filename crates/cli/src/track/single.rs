@@ -1,0 +1,137 @@
+//! The single-target job: one estimator over every plot of the file, in order. 2-D plot
+//! files get a 2-D CV estimator (`[x, vx, y, vy]`), 3-D ones (spherical or Cartesian 3-D)
+//! a 3-D CV estimator; the IMMs ([`super::single_imm`]) are 2-D. One row per estimate.
+
+use argus_core_math::Gaussian;
+use argus_filters::{two_point_cv2, two_point_cv3};
+use argus_sensors::Measurement;
+
+use super::rows::{Column, Point, TrackRows};
+use super::single_imm;
+use super::spec::Estimator;
+use super::start::{Converted, Ctx, TwoPoint, two_point};
+use crate::error::CliError;
+use crate::estimator::{
+    cv_ekf, cv_kf, cv3_ekf, cv3_kf, polar, position, position3, spherical, step,
+};
+use crate::plotfile::FilePlot;
+
+/// Runs `estimator` over `plots` (in file order, already checked by `plotfile`).
+///
+/// # Errors
+/// [`CliError::Input`] naming the plot file's line of a plot the estimator cannot use, or
+/// the configuration's key of a missing σ; the estimators' errors.
+pub(super) fn run(
+    ctx: &Ctx<'_>,
+    estimator: &Estimator,
+    plots: &[FilePlot],
+) -> Result<TrackRows, CliError> {
+    let three_d = plots.first().is_some_and(|p| p.measurement().dim() == 3);
+    match (estimator, three_d) {
+        (Estimator::KfConverted(sa), false) => {
+            let f = cv_kf(*sa)?;
+            track_loop(
+                ctx,
+                plots,
+                |p| ctx.convert2(p),
+                two_point_cv2,
+                |x, dt, p| {
+                    let (z, r) = ctx.convert2(p)?;
+                    Ok(step(&f, x, dt, &position(r)?, &z)
+                        .map_err(ctx.filter_error(p))?
+                        .0)
+                },
+            )
+        }
+        (Estimator::Ekf(sa), false) => {
+            let f = cv_ekf(*sa)?;
+            track_loop(
+                ctx,
+                plots,
+                |p| ctx.convert2(p),
+                two_point_cv2,
+                |x, dt, p| {
+                    let post = if let Measurement::Polar(z) = p.measurement() {
+                        let s = ctx.sensor(p)?;
+                        let (sr, sa) = ctx.polar_sigmas(s)?;
+                        let m = polar([s.position[0], s.position[1]], sr, sa)?;
+                        step(&f, x, dt, &m, &z.to_vector())
+                    } else {
+                        let (z, r) = ctx.convert2(p)?;
+                        step(&f, x, dt, &position(r)?, &z)
+                    };
+                    Ok(post.map_err(ctx.filter_error(p))?.0)
+                },
+            )
+        }
+        (Estimator::Imm(spec), false) => single_imm::imm(ctx, spec, plots),
+        (Estimator::MultiImm(spec, multi), false) => {
+            single_imm::multi_imm(ctx, spec, *multi, plots)
+        }
+        (Estimator::Imm(_) | Estimator::MultiImm(..), true) => Err(CliError::input(
+            ctx.config,
+            None,
+            Some("estimator.kind"),
+            format!(
+                "the IMM estimators track 2-D plots ([x, vx, y, vy]); {} holds 3-D plots",
+                ctx.plots_path.display()
+            ),
+        )),
+        (Estimator::KfConverted(sa), true) => {
+            let f = cv3_kf(*sa)?;
+            track_loop(
+                ctx,
+                plots,
+                |p| ctx.convert3(p),
+                two_point_cv3,
+                |x, dt, p| {
+                    let (z, r) = ctx.convert3(p)?;
+                    Ok(step(&f, x, dt, &position3(r)?, &z)
+                        .map_err(ctx.filter_error(p))?
+                        .0)
+                },
+            )
+        }
+        (Estimator::Ekf(sa), true) => {
+            let f = cv3_ekf(*sa)?;
+            track_loop(
+                ctx,
+                plots,
+                |p| ctx.convert3(p),
+                two_point_cv3,
+                |x, dt, p| {
+                    let post = if let Measurement::Spherical(z) = p.measurement() {
+                        let s = ctx.sensor(p)?;
+                        let m = spherical(s.position, ctx.spherical_sigmas(s)?)?;
+                        step(&f, x, dt, &m, &z.to_vector())
+                    } else {
+                        let (z, r) = ctx.convert3(p)?;
+                        step(&f, x, dt, &position3(r)?, &z)
+                    };
+                    Ok(post.map_err(ctx.filter_error(p))?.0)
+                },
+            )
+        }
+    }
+}
+
+/// The KF / EKF loop: the two-point start on the first two plots, then one predict +
+/// update per plot (`update(estimate, dt, plot)`), one row per estimate.
+fn track_loop<const D: usize, const N: usize>(
+    ctx: &Ctx<'_>,
+    plots: &[FilePlot],
+    convert: impl Fn(&FilePlot) -> Result<Converted<D>, CliError>,
+    init: TwoPoint<D, N>,
+    update: impl Fn(&Gaussian<N>, f64, &FilePlot) -> Result<Gaussian<N>, CliError>,
+) -> Result<TrackRows, CliError> {
+    let start = two_point(ctx, plots, convert, init)?;
+    let mut rows = TrackRows::new(Column::single(D, 0, false));
+    let (mut x, mut t) = (start.estimate, start.second.time());
+    rows.push(&Point::new(t, &x));
+    for p in start.rest {
+        x = update(&x, p.time() - t, p)?;
+        t = p.time();
+        rows.push(&Point::new(t, &x));
+    }
+    Ok(rows)
+}

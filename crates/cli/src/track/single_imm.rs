@@ -1,0 +1,220 @@
+//! The single-target IMM and multi-IMM over 2-D plots: an IMM of the configured CV /
+//! fixed-rate CT Kalman filters on converted plots (polar plots by the unbiased
+//! conversion with the sensor's σ, Cartesian reports as given), and seed 000's multi-IMM
+//! around it over one polar radar's plots. The mode count `R` and the hypothesis count
+//! `K` are compile-time sizes, picked here from the run-time configuration.
+
+use argus_core_math::Gaussian;
+use argus_filters::{Kf, two_point_cv2};
+use argus_imm::{
+    Imm, ImmError, ImmEstimate, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid,
+    NoiseVariances, UnbiasedConversion,
+};
+use argus_motion_models::PlanarModel;
+use argus_sensors::Measurement;
+
+use super::rows::{Column, Point, TrackRows};
+use super::spec::{ImmSpec, MAX_MODELS, MultiSpec};
+use super::start::{Ctx, too_few, two_point};
+use crate::error::CliError;
+use crate::estimator::position;
+use crate::plotfile::FilePlot;
+
+/// Calls `$f::<R>(args…)` for the run-time mode count `R ∈ 1 … MAX_MODELS`.
+macro_rules! by_modes {
+    ($r:expr, $f:ident, $($arg:expr),*) => {
+        match $r {
+            1 => $f::<1>($($arg),*),
+            2 => $f::<2>($($arg),*),
+            3 => $f::<3>($($arg),*),
+            4 => $f::<4>($($arg),*),
+            5 => $f::<5>($($arg),*),
+            r => Err(CliError::Usage(format!("{r} IMM models: at most {MAX_MODELS}"))),
+        }
+    };
+}
+
+/// The IMM of `spec` over `plots`. Plots of the same instant are applied in turn without
+/// mixing or prediction.
+///
+/// # Errors
+/// As [`super::single::run`].
+pub(super) fn imm(
+    ctx: &Ctx<'_>,
+    spec: &ImmSpec,
+    plots: &[FilePlot],
+) -> Result<TrackRows, CliError> {
+    by_modes!(spec.models.len(), track_imm, ctx, spec, plots)
+}
+
+/// The multi-IMM of `multi` around the IMM of `spec` over the polar plots of one sensor.
+///
+/// # Errors
+/// As [`super::single::run`]; a plot of another sensor or a Cartesian report.
+pub(super) fn multi_imm(
+    ctx: &Ctx<'_>,
+    spec: &ImmSpec,
+    multi: MultiSpec,
+    plots: &[FilePlot],
+) -> Result<TrackRows, CliError> {
+    by_modes!(spec.models.len(), track_multi, ctx, spec, multi, plots)
+}
+
+/// A mode count other than `R`.
+fn count_mismatch() -> ImmError {
+    ImmError::Empty {
+        what: "IMM modes (count mismatch)",
+    }
+}
+
+/// The IMM of `spec` with `R` modes (`R = spec.models.len()`), Kalman filters on converted
+/// plots.
+///
+/// # Errors
+/// [`CliError::Imm`] for an invalid Markov matrix or a mode count other than `R`.
+fn build_imm<const R: usize>(spec: &ImmSpec) -> Result<Imm<Kf<PlanarModel>, 4, R>, CliError> {
+    let filters: [Kf<PlanarModel>; R] = spec
+        .models
+        .iter()
+        .map(|m| Kf::new(*m))
+        .collect::<Vec<_>>()
+        .try_into()
+        .map_err(|_| count_mismatch())?;
+    let rows = spec
+        .markov
+        .iter()
+        .map(|r| <[f64; R]>::try_from(r.as_slice()))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|_| count_mismatch())?;
+    let rows: [[f64; R]; R] = rows.try_into().map_err(|_| count_mismatch())?;
+    Ok(Imm::new(filters, MarkovMatrix::new(rows)?)?)
+}
+
+/// The IMM's start: every mode from the two-point start, with `spec`'s `μ₀`.
+fn start_estimate<const R: usize>(
+    spec: &ImmSpec,
+    g: Gaussian<4>,
+) -> Result<ImmEstimate<4, R>, CliError> {
+    let mu = <[f64; R]>::try_from(spec.initial.as_slice()).map_err(|_| count_mismatch())?;
+    Ok(ImmEstimate::from_common(g, mu)?)
+}
+
+fn track_imm<const R: usize>(
+    ctx: &Ctx<'_>,
+    spec: &ImmSpec,
+    plots: &[FilePlot],
+) -> Result<TrackRows, CliError> {
+    let imm = build_imm::<R>(spec)?;
+    let start = two_point(ctx, plots, |p| ctx.convert2(p), two_point_cv2)?;
+    let mut est = start_estimate::<R>(spec, start.estimate)?;
+    let mut rows = TrackRows::new(Column::single(2, R, false));
+    let mut t = start.second.time();
+    let mu = est.mode_probabilities();
+    rows.push(&Point::new(t, &est.combined()?).modes(Some(&mu)));
+    for p in start.rest {
+        let (z, r) = ctx.convert2(p)?;
+        let meas = position(r)?;
+        let dt = p.time() - t;
+        let upd = if dt == 0.0 {
+            imm.update(&est.into_prediction(), &meas, &z)
+        } else {
+            imm.step(&est, dt, &meas, &z)
+        };
+        est = upd.map_err(ctx.imm_error(p))?.estimate;
+        t = p.time();
+        let c = est.combined().map_err(ctx.imm_error(p))?;
+        rows.push(&Point::new(t, &c).modes(Some(&est.mode_probabilities())));
+    }
+    Ok(rows)
+}
+
+/// The multi-IMM around an IMM with `R` modes: picks the grid size from `multi`.
+fn track_multi<const R: usize>(
+    ctx: &Ctx<'_>,
+    spec: &ImmSpec,
+    multi: MultiSpec,
+    plots: &[FilePlot],
+) -> Result<TrackRows, CliError> {
+    let (p, c) = (multi.p, multi.clip);
+    match (multi.per_axis, multi.n) {
+        (false, 3) => track_multi_k::<R, 3>(ctx, spec, NoiseGrid::common(p)?, c, plots),
+        (false, 5) => track_multi_k::<R, 5>(ctx, spec, NoiseGrid::common(p)?, c, plots),
+        (false, 7) => track_multi_k::<R, 7>(ctx, spec, NoiseGrid::common(p)?, c, plots),
+        (false, 9) => track_multi_k::<R, 9>(ctx, spec, NoiseGrid::common(p)?, c, plots),
+        (true, 3) => track_multi_k::<R, 9>(ctx, spec, NoiseGrid::independent(p)?, c, plots),
+        (true, 5) => track_multi_k::<R, 25>(ctx, spec, NoiseGrid::independent(p)?, c, plots),
+        (_, n) => Err(CliError::Usage(format!(
+            "multi-IMM with n = {n} is not built"
+        ))),
+    }
+}
+
+/// The multi-IMM with `K` noise hypotheses over the polar plots of one sensor; the initial
+/// reference is the sensor's configured σ.
+fn track_multi_k<const R: usize, const K: usize>(
+    ctx: &Ctx<'_>,
+    spec: &ImmSpec,
+    grid: NoiseGrid<K>,
+    clip: Option<f64>,
+    plots: &[FilePlot],
+) -> Result<TrackRows, CliError> {
+    let multi = MultiImm::new(build_imm::<R>(spec)?, grid, clip)?;
+    let first = plots.first().ok_or_else(|| too_few(ctx))?;
+    let sensor = ctx.sensor(first)?;
+    let (sr, sa) = ctx.polar_sigmas(sensor)?;
+    let not_polar = |p: &FilePlot, what: &str| {
+        CliError::input(
+            ctx.plots_path,
+            Some(p.line),
+            Some("sensor"),
+            format!("the multi-IMM estimates one polar radar's noise: {what}"),
+        )
+    };
+    let conv = UnbiasedConversion::<4>::new(0, 2)?.at([sensor.position[0], sensor.position[1]])?;
+    let reference = NoiseVariances::from_sigmas(sr, sa).map_err(|e| {
+        CliError::input(
+            ctx.config,
+            None,
+            Some("sigma_range"),
+            format!("sensor {}: {e}", sensor.id),
+        )
+    })?;
+    let start = two_point(ctx, plots, |p| ctx.convert2(p), two_point_cv2)?;
+    let p2 = start.second;
+    let mut est =
+        MultiImmEstimate::<4, R, K>::new(start_estimate::<R>(spec, start.estimate)?, reference);
+    let mut rows = TrackRows::new(Column::single(2, R, true));
+    let mut t = p2.time();
+    let push = |rows: &mut TrackRows, t: f64, est: &MultiImmEstimate<4, R, K>, c: &Gaussian<4>| {
+        let mu = est.mode_probabilities();
+        rows.push(
+            &Point::new(t, c)
+                .modes(Some(&mu))
+                .noise(Some(*est.reference())),
+        );
+    };
+    push(&mut rows, t, &est, &est.combined()?);
+    for p in plots.iter().take(2).chain(start.rest) {
+        if p.sensor() != sensor.id {
+            return Err(not_polar(
+                p,
+                &format!("plot of sensor {} after sensor {}", p.sensor(), sensor.id),
+            ));
+        }
+        let Measurement::Polar(plot) = p.measurement() else {
+            return Err(not_polar(p, "a Cartesian report"));
+        };
+        if p.line <= p2.line {
+            continue;
+        }
+        let dt = p.time() - t;
+        est = multi
+            .step(&est, dt, plot, &conv)
+            .map_err(ctx.imm_error(p))?
+            .estimate;
+        t = p.time();
+        let c = est.combined().map_err(ctx.imm_error(p))?;
+        push(&mut rows, t, &est, &c);
+    }
+    Ok(rows)
+}

@@ -1,0 +1,337 @@
+//! The checked `[[sensor]]` and `[estimator]` tables: [`Sensor`]s and an [`Estimator`]
+//! with every default filled in (here, once). Both jobs start from these: the
+//! single-target estimators use them as they are, the tracker maps them onto its own
+//! configuration ([`super::tracker_config`]).
+
+use argus_imm::PROBABILITY_SUM_TOL;
+use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
+use toml::Spanned;
+
+use super::schema::{EstimatorKind, EstimatorTable, ModelKind, SensorTable, Source};
+use crate::error::CliError;
+
+/// A checked sensor.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Sensor {
+    pub(super) id: u32,
+    /// `[x, y, z]` (z = 0 when the config gives two coordinates).
+    pub(super) position: [f64; 3],
+    /// Range σ (m), azimuth σ (rad).
+    pub(super) polar: Option<(f64, f64)>,
+    /// Elevation σ (rad).
+    pub(super) sigma_elevation: Option<f64>,
+}
+
+/// A checked estimator: its kind and the CV model's white-acceleration σ (m/s²), or the
+/// IMM (and multi-IMM) description. The KF and EKF are built for the plot file's
+/// dimension (2-D or 3-D CV); the IMMs are 2-D.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) enum Estimator {
+    KfConverted(f64),
+    Ekf(f64),
+    Imm(ImmSpec),
+    MultiImm(ImmSpec, MultiSpec),
+}
+
+/// The largest number of motion models an `argus track` IMM may have (the mode count is a
+/// compile-time size; 1 … 5 are built).
+pub(super) const MAX_MODELS: usize = 5;
+
+/// A checked IMM description: one planar motion model per mode, the Markov matrix (rows
+/// of `models.len()` entries) and the initial mode probabilities.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct ImmSpec {
+    /// The mode-matched models (CV or fixed-rate CT), each in a Kalman filter.
+    pub(super) models: Vec<PlanarModel>,
+    /// `π_ij`, row by row.
+    pub(super) markov: Vec<Vec<f64>>,
+    /// `μ₀`.
+    pub(super) initial: Vec<f64>,
+}
+
+/// The multi-IMM's parameters (seed 000 eqs (12)–(14), generalised).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct MultiSpec {
+    /// Hypotheses per axis (`n` IMMs with one common scale, `n²` with `per_axis`).
+    pub(super) n: usize,
+    /// Grid spacing `p`.
+    pub(super) p: f64,
+    /// Per-step clip of the reference's relative change (`None`: unclipped).
+    pub(super) clip: Option<f64>,
+    /// Range and azimuth variances on an independent `n × n` grid.
+    pub(super) per_axis: bool,
+}
+
+impl MultiSpec {
+    /// The defaults: the paper's five hypotheses on one scale, `p = 0.1`, ±5 % clip.
+    pub(super) const DEFAULT: Self = Self {
+        n: 5,
+        p: 0.1,
+        clip: Some(0.05),
+        per_axis: false,
+    };
+}
+
+fn non_negative(src: Source<'_>, field: &str, v: &Spanned<f64>) -> Result<f64, CliError> {
+    let x = *v.get_ref();
+    if x.is_finite() && x >= 0.0 {
+        Ok(x)
+    } else {
+        Err(src.at(
+            v,
+            field,
+            format!("{x} must be finite and non-negative (a standard deviation)"),
+        ))
+    }
+}
+
+/// Checks the `[[sensor]]` tables: 2 or 3 finite coordinates, σ non-negative, ids distinct.
+///
+/// # Errors
+/// [`CliError::Input`] at the bad value.
+pub(super) fn sensors(src: Source<'_>, tables: &[SensorTable]) -> Result<Vec<Sensor>, CliError> {
+    let mut sensors: Vec<Sensor> = Vec::with_capacity(tables.len());
+    for s in tables {
+        let id = *s.id.get_ref();
+        let pos = s.position.get_ref();
+        let position = match pos.as_slice() {
+            [x, y] => [*x, *y, 0.0],
+            [x, y, z] => [*x, *y, *z],
+            _ => {
+                return Err(src.at(
+                    &s.position,
+                    "position",
+                    format!(
+                        "sensor {id}: position needs 2 or 3 coordinates, not {}",
+                        pos.len()
+                    ),
+                ));
+            }
+        };
+        if !position.iter().all(|v| v.is_finite()) {
+            return Err(src.at(
+                &s.position,
+                "position",
+                format!("sensor {id}: position must be finite"),
+            ));
+        }
+        let polar = match (&s.sigma_range, &s.sigma_azimuth_deg) {
+            (Some(r), Some(a)) => Some((
+                non_negative(src, "sigma_range", r)?,
+                non_negative(src, "sigma_azimuth_deg", a)?.to_radians(),
+            )),
+            _ => None,
+        };
+        if sensors.iter().any(|o| o.id == id) {
+            return Err(src.missing("id", format!("sensor id {id} given twice")));
+        }
+        let sigma_elevation = match &s.sigma_elevation_deg {
+            Some(e) => Some(non_negative(src, "sigma_elevation_deg", e)?.to_radians()),
+            None => None,
+        };
+        sensors.push(Sensor {
+            id,
+            position,
+            polar,
+            sigma_elevation,
+        });
+    }
+    Ok(sensors)
+}
+
+/// Checks `[estimator]` and fills in its defaults.
+///
+/// # Errors
+/// [`CliError::Input`] at the bad value, or naming the missing key;
+/// [`CliError::Motion`] for a model the motion-model crate refuses.
+pub(super) fn estimator(src: Source<'_>, e: &EstimatorTable) -> Result<Estimator, CliError> {
+    let kind = *e.kind.get_ref();
+    let sigma_a = || {
+        let sa = e
+            .sigma_a
+            .as_ref()
+            .ok_or_else(|| missing(src, kind, "sigma_a"))?;
+        non_negative(src, "sigma_a", sa)
+    };
+    Ok(match kind {
+        EstimatorKind::KfConverted => Estimator::KfConverted(sigma_a()?),
+        EstimatorKind::Ekf => Estimator::Ekf(sigma_a()?),
+        EstimatorKind::Imm => Estimator::Imm(imm_spec(src, e)?),
+        EstimatorKind::MultiImm => Estimator::MultiImm(imm_spec(src, e)?, multi_spec(src, e)?),
+    })
+}
+
+/// A key that `kind` needs is not written.
+fn missing(src: Source<'_>, kind: EstimatorKind, key: &str) -> CliError {
+    src.missing(key, format!("required by estimator kind {kind:?}"))
+}
+
+/// Checks the Markov matrix: square, one row per model, entries in [0, 1], rows summing
+/// to 1 within 1e-9.
+fn check_markov(src: Source<'_>, m: &Spanned<Vec<Vec<f64>>>, n: usize) -> Result<(), CliError> {
+    let rows = m.get_ref();
+    if rows.len() != n || rows.iter().any(|r| r.len() != n) {
+        return Err(src.at(
+            m,
+            "markov",
+            format!("must be {n} × {n} (one row and column per model)"),
+        ));
+    }
+    for (i, r) in rows.iter().enumerate() {
+        let sum: f64 = r.iter().sum();
+        if r.iter().any(|p| !(0.0..=1.0).contains(p)) || (sum - 1.0).abs() > 1e-9 {
+            return Err(src.at(
+                m,
+                "markov",
+                format!(
+                    "row {} is not stochastic (entries in [0, 1] summing to 1; sum = {sum})",
+                    i + 1
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// One IMM mode's motion model.
+fn model(
+    src: Source<'_>,
+    kind: EstimatorKind,
+    m: &super::schema::ModelTable,
+) -> Result<PlanarModel, CliError> {
+    let sa = non_negative(src, "sigma_a", &m.sigma_a)?;
+    Ok(match (m.kind, &m.rate_deg) {
+        (ModelKind::Ct, Some(w)) => {
+            let rate = *w.get_ref();
+            if !(rate.is_finite() && rate != 0.0) {
+                return Err(src.at(
+                    w,
+                    "rate_deg",
+                    format!(
+                        "{rate} must be finite and non-zero (a zero-rate turn is kind = \"cv\")"
+                    ),
+                ));
+            }
+            PlanarModel::from(CoordinatedTurn::from_degrees_per_second(rate, sa)?)
+        }
+        (ModelKind::Ct, None) => return Err(missing(src, kind, "rate_deg")),
+        (ModelKind::Cv, Some(w)) => {
+            return Err(src.at(w, "rate_deg", "a CV model has no turn rate"));
+        }
+        (ModelKind::Cv, None) => PlanarModel::from(Cv2D::discrete(sa)?),
+    })
+}
+
+/// Checks the IMM keys (`models`, `markov`, `initial`, default: uniform) and builds the
+/// motion models.
+fn imm_spec(src: Source<'_>, e: &EstimatorTable) -> Result<ImmSpec, CliError> {
+    let kind = *e.kind.get_ref();
+    let models = e
+        .models
+        .as_ref()
+        .ok_or_else(|| missing(src, kind, "models"))?
+        .get_ref();
+    if models.is_empty() || models.len() > MAX_MODELS {
+        return Err(src.missing(
+            "models",
+            format!("1 to {MAX_MODELS} models, not {}", models.len()),
+        ));
+    }
+    let built = models
+        .iter()
+        .map(|m| model(src, kind, m))
+        .collect::<Result<Vec<_>, _>>()?;
+    let n = built.len();
+    let markov = e
+        .markov
+        .as_ref()
+        .ok_or_else(|| missing(src, kind, "markov"))?;
+    check_markov(src, markov, n)?;
+    let initial = match &e.initial {
+        None => vec![1.0 / n as f64; n],
+        Some(v) => {
+            let mu = v.get_ref();
+            let sum: f64 = mu.iter().sum();
+            if mu.len() != n
+                || mu.iter().any(|p| !(0.0..=1.0).contains(p))
+                || (sum - 1.0).abs() > PROBABILITY_SUM_TOL
+            {
+                return Err(src.at(
+                    v,
+                    "initial",
+                    format!(
+                        "needs {n} probabilities (one per model) in [0, 1] summing to 1 (sum = {sum})"
+                    ),
+                ));
+            }
+            mu.clone()
+        }
+    };
+    Ok(ImmSpec {
+        models: built,
+        markov: markov.get_ref().clone(),
+        initial,
+    })
+}
+
+/// Checks the multi-IMM keys `n`, `p`, `clip`, `per_axis` (defaults:
+/// [`MultiSpec::DEFAULT`]).
+fn multi_spec(src: Source<'_>, e: &EstimatorTable) -> Result<MultiSpec, CliError> {
+    let d = MultiSpec::DEFAULT;
+    let per_axis = e.per_axis.as_ref().map_or(d.per_axis, |v| *v.get_ref());
+    let allowed: &[usize] = if per_axis { &[3, 5] } else { &[3, 5, 7, 9] };
+    let n = match &e.n {
+        None => d.n,
+        Some(v) => {
+            let n = *v.get_ref();
+            match usize::try_from(n) {
+                Ok(n) if allowed.contains(&n) => n,
+                _ => {
+                    let with = if per_axis {
+                        " with per_axis = true"
+                    } else {
+                        ""
+                    };
+                    return Err(src.at(
+                        v,
+                        "n",
+                        format!("{n} hypotheses per axis: one of {allowed:?}{with}"),
+                    ));
+                }
+            }
+        }
+    };
+    let p = match &e.p {
+        None => d.p,
+        Some(v) => {
+            let p = *v.get_ref();
+            // The smallest factor 1 − (n − 1)/2 · p must stay positive (eq 14).
+            if !(p.is_finite() && p > 0.0 && p * (n as f64 - 1.0) / 2.0 < 1.0) {
+                return Err(src.at(
+                    v,
+                    "p",
+                    format!(
+                        "{p}: the grid spacing must be positive and keep 1 − (n − 1)/2 · p > 0 (n = {n})"
+                    ),
+                ));
+            }
+            p
+        }
+    };
+    let clip = match &e.clip {
+        None => d.clip,
+        Some(v) => {
+            let c = *v.get_ref();
+            if !(c.is_finite() && (0.0..1.0).contains(&c)) {
+                return Err(src.at(v, "clip", format!("{c} must be in [0, 1) (0: no clip)")));
+            }
+            (c > 0.0).then_some(c)
+        }
+    };
+    Ok(MultiSpec {
+        n,
+        p,
+        clip,
+        per_axis,
+    })
+}
