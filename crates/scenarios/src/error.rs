@@ -169,6 +169,9 @@ pub enum ScenarioError {
     /// An IMM or multi-IMM rejected a value.
     #[error("imm: {0}")]
     Imm(#[from] argus_imm::ImmError),
+    /// The IMM smoother refused a recorded track.
+    #[error("imm smoothing: {0}")]
+    ImmSmooth(#[from] argus_imm::ImmSmoothError),
     /// Gating or data association rejected a value.
     #[error("association: {0}")]
     Association(#[from] argus_association::AssociationError),

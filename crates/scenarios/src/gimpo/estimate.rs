@@ -6,7 +6,7 @@ use argus_core_math::Vector;
 use argus_filters::{Kf, two_point_cv2};
 use argus_imm::{
     DifferenceEstimate, DifferenceNoiseImm, EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate,
-    MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion,
+    ImmTrack, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion,
     UnbiasedConversion, VariationalEstimate, VariationalNoiseImm,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
@@ -40,6 +40,9 @@ pub(super) struct RunOut {
     pub(super) fixed_se: [Vec<f64>; 5],
     /// Mode probabilities (CV, CT+, CT−) of the IMM with the true R.
     pub(super) mu: Vec<[f64; 3]>,
+    /// Squared position error of the fixed-interval smoothed IMM with the true R
+    /// (argus_imm's forward–backward smoother, default pair weights), per step.
+    pub(super) smooth_se: Vec<f64>,
     /// Paper's multi-IMM: squared error and variance ratio, per start.
     pub(super) multi_se: [Vec<f64>; 5],
     pub(super) multi_ratio: [Vec<f64>; 5],
@@ -219,6 +222,32 @@ impl Estimators {
             if i == 2 {
                 out.mu.push(est.mode_probabilities());
             }
+        }
+        if i == 2 {
+            self.smoothed(inp, var0, out)?;
+        }
+        Ok(())
+    }
+
+    /// The IMM with the true R recorded and smoothed over the whole run (issue 19): the
+    /// same forward steps as [`Self::fixed`], then the fixed-interval backward pass.
+    fn smoothed(
+        &self,
+        inp: &RunInput<'_>,
+        var0: NoiseVariances,
+        out: &mut RunOut,
+    ) -> Result<(), ScenarioError> {
+        let mut track = ImmTrack::new(*self.imm.markov(), inp.t2, inp.init(&var0)?)?;
+        track.reserve(inp.rest.len());
+        for (t, pl) in inp.rest {
+            let (m, z) = self.conv.convert(pl, &var0)?;
+            track.step(&self.imm, *t, &m, &z)?;
+        }
+        let smoothed = track.smooth()?;
+        // The first recorded step is the start (at the second plot): skip it, as fixed_se does.
+        for (s, st) in smoothed.iter().zip(track.steps()).skip(1) {
+            out.smooth_se
+                .push(se(s.combined.mean(), &inp.truth_pos(st.time())?));
         }
         Ok(())
     }

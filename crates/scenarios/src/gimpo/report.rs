@@ -186,6 +186,19 @@ fn rows(p: &Params, clip: Option<f64>, st: &Stats<'_>) -> Result<Vec<Row>, Scena
             ),
         ));
     }
+    let smooth = st.rms_tail(&|r| &r.smooth_se);
+    rows.push(row(
+        "smooth_rms_ratio".into(),
+        "RMS pos. error, smoothed / filtered IMM (true R)".into(),
+        None,
+        Some("issue 19 goal: ≤ 0.6".into()),
+        smooth / true_rms,
+        "-",
+        format!(
+            "fixed-interval IMM smoother (Kim 1994, expectation-correction weights): {smooth:.2} m against {true_rms:.2} m; t ≥ {:.0} % of the flight",
+            WARMUP * 100.0
+        ),
+    ));
     for (i, f) in STARTS.iter().enumerate() {
         let (m, sd) = mean_sd_last(
             runs.iter()
