@@ -75,7 +75,10 @@ pub enum AdaptiveError {
 }
 
 /// Checks that `value` is finite.
-pub(crate) fn finite(value: f64, what: &'static str) -> Result<f64, AdaptiveError> {
+///
+/// # Errors
+/// [`AdaptiveError::NonFinite`] naming `what`.
+pub fn finite(value: f64, what: &'static str) -> Result<f64, AdaptiveError> {
     if value.is_finite() {
         Ok(value)
     } else {
@@ -84,7 +87,10 @@ pub(crate) fn finite(value: f64, what: &'static str) -> Result<f64, AdaptiveErro
 }
 
 /// Checks that `value` is finite and strictly positive.
-pub(crate) fn positive(value: f64, what: &'static str) -> Result<f64, AdaptiveError> {
+///
+/// # Errors
+/// [`AdaptiveError::NonFinite`] or [`AdaptiveError::InvalidParameter`] naming `what`.
+pub fn positive(value: f64, what: &'static str) -> Result<f64, AdaptiveError> {
     finite(value, what)?;
     if value > 0.0 {
         Ok(value)

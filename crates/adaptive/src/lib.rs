@@ -62,7 +62,7 @@ pub use adaptive_r::{
 pub use coupled::CoupledCvFilter;
 pub use decoupled::{DecoupledEstimate, DecoupledFilter, DecoupledUpdate, FrameHandling};
 pub use decoupled_plot::{ConvertedPlot, aligned_frame, beacon_plot, beacon_plot_of};
-pub use error::AdaptiveError;
+pub use error::{AdaptiveError, finite as check_finite, positive as check_positive};
 
 // Seed 001: GLRT maneuver detection, MRAS input estimation, the adaptive filter.
 pub mod glrt;

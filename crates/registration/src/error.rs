@@ -78,7 +78,10 @@ pub enum RegistrationError {
 }
 
 /// Checks a scalar is finite.
-pub(crate) fn finite(what: &'static str, value: f64) -> Result<f64, RegistrationError> {
+///
+/// # Errors
+/// [`RegistrationError::NonFinite`] naming `what`.
+pub fn finite(what: &'static str, value: f64) -> Result<f64, RegistrationError> {
     if value.is_finite() {
         Ok(value)
     } else {
@@ -87,7 +90,10 @@ pub(crate) fn finite(what: &'static str, value: f64) -> Result<f64, Registration
 }
 
 /// Checks a scalar is finite and strictly positive.
-pub(crate) fn positive(what: &'static str, value: f64) -> Result<f64, RegistrationError> {
+///
+/// # Errors
+/// [`RegistrationError::NonFinite`] or [`RegistrationError::InvalidParameter`] naming `what`.
+pub fn positive(what: &'static str, value: f64) -> Result<f64, RegistrationError> {
     finite(what, value)?;
     if value > 0.0 {
         Ok(value)

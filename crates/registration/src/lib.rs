@@ -49,7 +49,7 @@ mod polar;
 mod pseudo;
 mod registrar;
 
-pub use error::RegistrationError;
+pub use error::{RegistrationError, finite as check_finite, positive as check_positive};
 pub use estimator::{Backend, BiasEstimator, PseudoMeasurement, STACK_MAX_SENSORS};
 pub use exx::{ExxCollector, exx_pseudo_measurement};
 pub use local::{BiasedLocalFilter, BiasedTrack, position_matrix};

@@ -30,7 +30,6 @@
 
 mod api;
 pub mod campaign;
-mod checks;
 mod context;
 mod error;
 pub mod estimator;

@@ -14,7 +14,7 @@ use argus_registration::{
     RegistrationError, position_matrix,
 };
 
-use crate::checks::{registration_finite as finite, registration_positive as positive};
+use argus_registration::{check_finite as finite, check_positive as positive};
 use argus_sensors::PolarBias;
 
 /// One sensor of the scenario: the radar, its true bias and its schedule.

@@ -28,7 +28,7 @@ use argus_adaptive::{
     beacon_plot, beacon_plot_of,
 };
 
-use crate::checks::adaptive_positive as positive;
+use argus_adaptive::check_positive as positive;
 
 /// The filters run side by side on the same plots.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -178,11 +178,11 @@ impl RbsLandingConfig {
             });
         }
         positive(self.ground_distance, "ground_distance")?;
-        crate::checks::adaptive_finite(self.runway_y, "runway_y")?;
+        argus_adaptive::check_finite(self.runway_y, "runway_y")?;
         positive(self.accel_sd, "accel_sd")?;
         positive(self.init_pos_sd, "init_pos_sd")?;
         positive(self.init_vel_sd, "init_vel_sd")?;
-        crate::checks::adaptive_finite(self.snr_fluctuation_db, "snr_fluctuation_db")?;
+        argus_adaptive::check_finite(self.snr_fluctuation_db, "snr_fluctuation_db")?;
         if self.snr_fluctuation_db < 0.0 {
             return Err(AdaptiveError::InvalidParameter {
                 what: "snr_fluctuation_db",
