@@ -118,6 +118,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod aircraft;
 mod assign;
 mod config;
 mod error;
@@ -133,6 +134,9 @@ mod state;
 mod track;
 mod tracker;
 
+/// The aircraft IMM's tuning and mixing rule (from `argus-imm`), re-exported for
+/// [`EstimatorConfig::Aircraft`].
+pub use argus_imm::{AircraftTuning, Augmentation};
 /// The plot vocabulary the tracker takes (from `argus-sensors`), re-exported.
 pub use argus_sensors::{Plot, SensorId};
 pub use config::{
@@ -140,6 +144,6 @@ pub use config::{
 };
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
-pub use state::MULTI_IMM_HYPOTHESES;
+pub use state::{MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};
