@@ -49,6 +49,11 @@ pub(crate) enum Estimator {
 }
 
 /// One track's prediction as gating sees it.
+///
+/// A temporary on the stack, one per track per gating pass: the aircraft variant holds its
+/// modes' measurement predictions by value (boxing them would allocate per track and
+/// scan).
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum TrackGate<'a> {
     /// The combined prediction, with the EKF's polar measurement prediction when the
     /// scan has polar plots for an EKF.
