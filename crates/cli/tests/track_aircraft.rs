@@ -440,16 +440,18 @@ fn bad_aircraft_configs_name_file_line_and_field() {
         let (code, err, _) = track_cfg(d, "a.toml", c, "p.csv");
         assert_error(code, &err, needles);
     }
-    // Under [tracker]: JPDA is not built with it (the association's line), and a
+    // Under [tracker]: JPDA runs (IMM-JPDA), a bad JPDA key is named at its line, and a
     // Cartesian plot is refused at its line.
     let jpda =
         cfg("\n[tracker]\nassociation = \"jpda\"\np_detection = 0.9\nclutter_density = 1e-9");
-    let (code, err, _) = track_cfg(d, "a.toml", &jpda, "p.csv");
-    assert_error(
-        code,
-        &err,
-        &["a.toml:11", "field 'tracker.association'", "aircraft IMM"],
+    let (code, err, text) = track_cfg(d, "a.toml", &jpda, "p.csv");
+    assert_eq!(code, Some(0), "{err}");
+    assert!(
+        text.lines().last().unwrap().contains(",confirmed,"),
+        "{text}"
     );
+    let (code, err, _) = track_cfg(d, "a.toml", &jpda.replace("0.9", "1.5"), "p.csv");
+    assert_error(code, &err, &["a.toml:12", "field 'tracker.p_detection'"]);
     let cart = "t,sensor,x,y,r_xx,r_xy,r_yy\n0,1,0,0,100,0,100\n5,1,50,0,100,0,100\n";
     std::fs::write(d.join("cart.csv"), cart).unwrap();
     let (code, err, _) = track_cfg(d, "a.toml", &cfg("\n[tracker]"), "cart.csv");

@@ -132,3 +132,199 @@ pub(crate) fn update(
     *state = u.estimate;
     Some((combined, u.log_likelihood - z[0].ln()))
 }
+
+/// The moment-matched Gaussian of a weighted mixture, summed part by part without
+/// storing the parts: with `dᵢ = x̂ᵢ − x_ref` (centred on `reference`, the mode's
+/// prediction, so that no large position cancels), `W = Σ wᵢ`, `x̂ = x_ref + Σ wᵢ dᵢ / W`,
+/// `P = Σ wᵢ (Pᵢ + dᵢ dᵢᵀ) / W − (x̂ − x_ref)(x̂ − x_ref)ᵀ` — the same moments as
+/// [`Gaussian::mixture_of`].
+struct MomentSum<const N: usize> {
+    reference: Vector<N>,
+    w: f64,
+    s1: Vector<N>,
+    s2: argus_core_math::Matrix<N, N>,
+}
+
+impl<const N: usize> MomentSum<N> {
+    fn new(reference: Vector<N>) -> Self {
+        Self {
+            reference,
+            w: 0.0,
+            s1: Vector::<N>::zeros(),
+            s2: argus_core_math::Matrix::<N, N>::zeros(),
+        }
+    }
+
+    fn add(&mut self, w: f64, g: &Gaussian<N>) {
+        let d = g.mean() - self.reference;
+        self.w += w;
+        self.s1 += d * w;
+        self.s2 += (g.cov() + d * d.transpose()) * w;
+    }
+
+    /// The mixture; `None` when the weights vanish or the result is not a Gaussian.
+    fn gaussian(&self) -> Option<Gaussian<N>> {
+        if !(self.w.is_finite() && self.w > 0.0) {
+            return None;
+        }
+        let m = self.s1 / self.w;
+        let p = self.s2 / self.w - m * m.transpose();
+        Gaussian::from_symmetrized(self.reference + m, &p).ok()
+    }
+}
+
+/// The IMM-JPDA update of an aircraft track whose state holds its prediction, from its
+/// JPDA marginals `β_j` over the plots `points` of `sensor` (computed from the mixture
+/// likelihoods of [`AircraftGate::innovation`]), as `crate::pda::imm_jpda_update` does for
+/// the two-CV IMM: with `N_r,j = N(ν_r,j; 0, S_r,j)` of mode `r`'s EKF update with plot
+/// `j` and `N_j = Σ_s μ̄_s N_s,j`, `P(r, j) = β_j μ̄_r N_r,j / N_j`, `P(r, 0) = β₀ μ̄_r`;
+/// `μ_r = Σ_j P(r, j)` and mode `r`'s estimate the mixture of its prediction and its
+/// updates with the weights `P(r, j) / μ_r` (Blom & Bloem 2000; Bar-Shalom, Willett &
+/// Tian 2011). The polar Jacobian `r` is common to every mode of a plot and cancels in
+/// `N_r,j / N_j`. The state becomes the posterior; returns the combined estimate, `None`
+/// when a step fails. No allocation: the mixtures are summed part by part.
+pub(crate) fn jpda_update(
+    imm: &Aircraft3,
+    state: &mut AircraftState,
+    weights: &[(usize, f64)],
+    points: &[ScanPoint],
+    sensor: &PolarModel,
+) -> Option<Gaussian<4>> {
+    let radar = &sensor.aircraft;
+    let mu_bar = state.mode_probabilities();
+    let [c0, c1] = *state.cv_modes();
+    let ct = *state.ct_mode();
+    let b0 = (1.0 - weights.iter().map(|w| w.1).sum::<f64>()).max(0.0);
+    let mut cv_sums = [MomentSum::new(*c0.mean()), MomentSum::new(*c1.mean())];
+    let mut ct_sum = MomentSum::new(*ct.mean());
+    cv_sums[0].add(b0 * mu_bar[0], &c0);
+    cv_sums[1].add(b0 * mu_bar[1], &c1);
+    ct_sum.add(b0 * mu_bar[2], &ct);
+    let [f0, f1] = imm.cv_filters();
+    for &(j, b) in weights {
+        let z = points[j].polar?;
+        let (p0, i0) = f0.update(&c0, radar.cv(), &z).ok()?;
+        let (p1, i1) = f1.update(&c1, radar.cv(), &z).ok()?;
+        let (p2, i2) = imm.ct_filter().update(&ct, radar.ct(), &z).ok()?;
+        let lc = state.log_mode_probabilities();
+        let joint = [
+            lc[0] + i0.log_likelihood(),
+            lc[1] + i1.log_likelihood(),
+            lc[2] + i2.log_likelihood(),
+        ];
+        let total = log_sum_exp(&joint);
+        if !total.is_finite() {
+            return None;
+        }
+        cv_sums[0].add(b * (joint[0] - total).exp(), &p0);
+        cv_sums[1].add(b * (joint[1] - total).exp(), &p1);
+        ct_sum.add(b * (joint[2] - total).exp(), &p2);
+    }
+    let mu = [cv_sums[0].w, cv_sums[1].w, ct_sum.w];
+    let sum: f64 = mu.iter().sum();
+    if !(sum.is_finite() && sum > 0.0) {
+        return None;
+    }
+    // A mode whose weight vanished keeps its prediction.
+    let cv = [
+        cv_sums[0].gaussian().unwrap_or(c0),
+        cv_sums[1].gaussian().unwrap_or(c1),
+    ];
+    let ct = ct_sum.gaussian().unwrap_or(ct);
+    let posterior = AircraftState::new(cv, ct, mu.map(|m| m / sum)).ok()?;
+    let combined = posterior.combined().ok()?;
+    *state = posterior;
+    Some(combined)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plot::{CartesianPlots, SensorModel};
+    use crate::{SensorConfig, SensorId};
+    use argus_imm::AircraftTuning;
+    use argus_sensors::Plot;
+
+    /// A track 5 s after a two-point start on an aircraft turning at 2 °/s, predicted, with
+    /// the radar and two plots near it.
+    fn setup() -> (Aircraft3, AircraftState, SensorModel, [ScanPoint; 2]) {
+        let tuning = AircraftTuning::<2, 3>::default();
+        let imm = tuning.build().unwrap();
+        let cfg = SensorConfig::polar(SensorId(1), [0.0, 0.0], 70.0, 0.08_f64.to_radians());
+        let sensor = SensorModel::new(&cfg).unwrap();
+        let radar = &sensor.polar.as_ref().unwrap().aircraft;
+        let plot = |x: f64, y: f64| Vector::<2>::new(x.hypot(y), y.atan2(x));
+        let mut est = tuning
+            .start(radar, &plot(50e3, 20e3), &plot(51e3, 20e3), 5.0)
+            .unwrap();
+        est = imm
+            .step(&est, 5.0, radar, &plot(52e3, 20.1e3))
+            .unwrap()
+            .estimate;
+        let state = imm.predict(&est, 5.0).unwrap().into_estimate();
+        let point = |z: Vector<2>| {
+            let p = Plot::polar(10.0, SensorId(1), z[0], z[1]).unwrap();
+            sensor
+                .point(0, &p, CartesianPlots::Refused("aircraft IMM"))
+                .unwrap()
+        };
+        let points = [point(plot(53e3, 20.3e3)), point(plot(52.9e3, 20.1e3))];
+        (imm, state, sensor, points)
+    }
+
+    #[test]
+    fn jpda_with_one_certain_plot_is_the_imm_update() {
+        // β = 1 for one plot (β₀ = 0): P(r, j) = μ̄_r N_r / N is the IMM's posterior mode
+        // probability and each mode's mixture has one part, its EKF update. Tolerance:
+        // round-off of the part-by-part sums (1e-9 relative).
+        let (imm, mut state, sensor, points) = setup();
+        let pm = sensor.polar.as_ref().unwrap();
+        let mut gnn = state;
+        let (g_gnn, _) = update(&imm, &mut gnn, pm, &points[0].polar.unwrap()).unwrap();
+        let g_jpda = jpda_update(&imm, &mut state, &[(0, 1.0)], &points, pm).unwrap();
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + b.abs());
+        for k in 0..4 {
+            assert!(close(g_jpda.mean()[k], g_gnn.mean()[k]), "{k}");
+            assert!(close(g_jpda.cov()[(k, k)], g_gnn.cov()[(k, k)]), "{k}");
+        }
+        for (a, b) in state
+            .mode_probabilities()
+            .iter()
+            .zip(gnn.mode_probabilities())
+        {
+            assert!(close(*a, b), "{a} vs {b}");
+        }
+        assert!(close(state.turn_rate().0, gnn.turn_rate().0));
+    }
+
+    #[test]
+    fn jpda_weights_move_the_estimate_between_prediction_and_plots() {
+        // With β₀ = 1 (no plot weighted) the posterior is the prediction; with two plots
+        // at β = 0.5 each the combined position lies between the two single-plot updates
+        // (within 1 m: the posterior is a convex combination of every mode's update with
+        // either plot, and its mode weights are not quite those of either single update).
+        let (imm, state, sensor, points) = setup();
+        let pm = sensor.polar.as_ref().unwrap();
+        let mut coast = state;
+        let g0 = jpda_update(&imm, &mut coast, &[(0, 0.0)], &points, pm).unwrap();
+        let pred = state.combined().unwrap();
+        assert!((g0.mean() - pred.mean()).norm() < 1e-6 * pred.mean().norm());
+        let mut both = state;
+        let g = jpda_update(&imm, &mut both, &[(0, 0.5), (1, 0.5)], &points, pm).unwrap();
+        let one = |j: usize| {
+            let mut s = state;
+            update(&imm, &mut s, pm, &points[j].polar.unwrap())
+                .unwrap()
+                .0
+        };
+        let (a, b) = (one(0), one(1));
+        let (lo, hi) = (a.mean()[0].min(b.mean()[0]), a.mean()[0].max(b.mean()[0]));
+        assert!(
+            (lo - 1.0..=hi + 1.0).contains(&g.mean()[0]),
+            "{lo} {} {hi}",
+            g.mean()[0]
+        );
+        // The spread between the two plots inflates the position variance.
+        assert!(g.cov()[(0, 0)] > a.cov()[(0, 0)].min(b.cov()[(0, 0)]));
+    }
+}

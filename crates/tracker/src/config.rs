@@ -150,8 +150,8 @@ pub enum AssociationConfig {
     /// (see the crate docs). Every plot in a confirmed track's gate is spent (no track is
     /// initiated from it). A track is updated with the moment-matched mixture of its
     /// per-plot Kalman (or EKF) updates and its prediction, weighted by the marginals.
-    /// With [`EstimatorConfig::ImmCv2`] this is IMM-JPDA (see the crate docs); not
-    /// available with [`EstimatorConfig::MultiImm`] or [`EstimatorConfig::Aircraft`].
+    /// With [`EstimatorConfig::ImmCv2`] and [`EstimatorConfig::Aircraft`] this is
+    /// IMM-JPDA (see the crate docs); not available with [`EstimatorConfig::MultiImm`].
     Jpda {
         /// Detection probability `P_D` in (0, 1].
         p_detection: f64,
@@ -216,7 +216,8 @@ pub enum EstimatorConfig {
     /// (per m², as the EKF's). A track starts from the two-point estimate of its
     /// initiating plots ([`argus_imm::AircraftTuning::start_from_cv`]).
     /// [`crate::TrackerConfig::sigma_a`] is not used. Every sensor must have polar noise
-    /// and every plot must be polar; GNN only (JPDA is refused by the validation).
+    /// and every plot must be polar. With JPDA each mode is updated with its own PDA
+    /// mixture of its EKF updates, as the two-CV IMM's IMM-JPDA (see the crate docs).
     Aircraft {
         /// Its tuning (`AircraftTuning::default()` is the documented one).
         tuning: AircraftTuning<2, 3>,
@@ -522,13 +523,6 @@ impl TrackerConfig {
                     ConfigField::Association(AssociationField::Kind),
                     0.0,
                     "JPDA with the multi-IMM estimator is not built",
-                );
-            }
-            if matches!(self.estimator, EstimatorConfig::Aircraft { .. }) {
-                return bad(
-                    ConfigField::Association(AssociationField::Kind),
-                    0.0,
-                    "JPDA with the aircraft IMM estimator is not built",
                 );
             }
         }

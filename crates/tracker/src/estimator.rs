@@ -333,9 +333,11 @@ impl Estimator {
                     }),
                 (Some(_), None) => None,
             },
-            // GNN only (JPDA is refused by the validation): a hit or a coast.
+            // JPDA (its weights), a hit or a coast.
             (Self::Aircraft { imm, .. }, TrackState::Aircraft(a)) => match (hit, sensor) {
-                _ if !weights.is_empty() => None,
+                (_, Some(pm)) if !weights.is_empty() => {
+                    aircraft::jpda_update(imm, a, weights, points, pm).map(|g| (g, None))
+                }
                 (None, _) => Some((pred, None)),
                 (Some(j), Some(pm)) => points[j]
                     .polar

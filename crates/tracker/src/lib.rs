@@ -53,6 +53,8 @@
 //!    `μ_r = μ̄_r (β₀ + Σ_j β_j N_r,j / N_j)`, the mode likelihood summed over the plot
 //!    events (Blom & Bloem, IEEE Trans. AC 45(2), 2000; Bar-Shalom, Willett & Tian,
 //!    *Tracking and Data Fusion*, 2011). With identical modes it is JPDA with the KF.
+//!    The aircraft IMM ([`EstimatorConfig::Aircraft`]) does the same with its three
+//!    modes' polar EKF updates and the `(r, θ)` mixture likelihood per m².
 //!    The solver is the [`lsap`] crate: SciPy's `linear_sum_assignment` algorithm
 //!    (Crouse's shortest augmenting path form of Jonker–Volgenant) on `f64` costs and
 //!    rectangular matrices. `pathfinding::kuhn_munkres`, the best-known Rust solver,
@@ -99,7 +101,7 @@
 //! `argus_sim::Ospa`, `Gospa` and `TrackStatistics`.
 //!
 //! # Not yet here
-//! JPDA with the multi-IMM or the aircraft IMM (refused by the configuration); the
+//! JPDA with the multi-IMM (refused by the configuration); the
 //! multi-IMM and the aircraft IMM with Cartesian plots (refused per plot); the multi-IMM
 //! with one noise estimate per sensor (all sensors feeding a track share its estimate);
 //! 3-D (spherical) plots. (The two-mode IMM [`EstimatorConfig::ImmCv2`] has CV modes
