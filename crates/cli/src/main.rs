@@ -112,7 +112,7 @@ enum Command {
         smooth_lag: Option<u64>,
         /// Fixed-lag smoothing: each estimate smoothed with the steps of the next S
         /// seconds (S > 0).
-        #[arg(long, value_name = "S", value_parser = positive_seconds)]
+        #[arg(long, value_name = "S", value_parser = positive_seconds, allow_negative_numbers = true)]
         smooth_lag_seconds: Option<f64>,
     },
     /// Scores a tracks CSV (confirmed rows) against a truth CSV: completeness, breaks,

@@ -140,3 +140,84 @@ pub(super) fn sensor_position(
     let enu = r.frame.geodetic_to_enu(&g);
     Ok(Some([enu.east, enu.north, enu.up]))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::job::{Job, load_all};
+
+    /// Loads `text` as a configuration file.
+    fn load(text: &str) -> Result<super::super::job::Loaded, crate::error::CliError> {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("g.toml");
+        std::fs::write(&p, text).unwrap();
+        load_all(&p)
+    }
+
+    const EST: &str = "\n[estimator]\nkind = \"kf-converted\"\nsigma_a = 1.0\n";
+
+    #[test]
+    fn a_geodetic_site_is_at_its_enu_position() {
+        // GeographicLib's CartConvert documentation: `echo 33.3 44.4 6000 | CartConvert
+        // -l 33 44 20` prints `37288.97 33374.29 5783.64` (cm: tolerance 0.005 m; the up
+        // value is truncated, 0.01 m).
+        let text = format!(
+            "[reference]\nlatitude = 33.0\nlongitude = 44.0\naltitude = 20.0\n\n[[sensor]]\nid = 1\nlatitude = 33.3\nlongitude = 44.4\naltitude = 6000.0\n{EST}"
+        );
+        let l = load(&text).unwrap();
+        let Job::Single { sensors, .. } = l.job else {
+            panic!("not single");
+        };
+        let [e, n, u] = sensors[0].position;
+        assert!((e - 37_288.97).abs() < 0.005, "{e}");
+        assert!((n - 33_374.29).abs() < 0.005, "{n}");
+        assert!((u - 5_783.64).abs() < 0.01, "{u}");
+        // lat, lon of (e, n) at the reference's altitude, back by the closed form.
+        let r = l.reference.unwrap();
+        let (lat, lon) = r.lat_lon(e, n).unwrap();
+        let g = argus_geo::Geodetic::from_degrees(lat, lon, 20.0).unwrap();
+        let back = r.frame.geodetic_to_enu(&g);
+        // 1 mm (issue 18); the point is 50 km out, 195 m below the tangent plane.
+        assert!((back.east - e).hypot(back.north - n) < 1e-3);
+        assert!((back.up + 195.0).abs() < 5.0, "{}", back.up);
+    }
+
+    #[test]
+    fn bad_geodetic_keys_name_their_line() {
+        let cases = [
+            // No reference.
+            (
+                "[[sensor]]\nid = 1\nlatitude = 33.3\nlongitude = 44.4\n",
+                3,
+                "reference",
+            ),
+            // Both a position and a site.
+            (
+                "[reference]\nlatitude = 33.0\nlongitude = 44.0\n[[sensor]]\nid = 1\nposition = [0.0, 0.0]\nlatitude = 33.3\nlongitude = 44.4\n",
+                6,
+                "not both",
+            ),
+            // A latitude alone.
+            (
+                "[reference]\nlatitude = 33.0\nlongitude = 44.0\n[[sensor]]\nid = 1\nlatitude = 33.3\n",
+                6,
+                "go together",
+            ),
+            // A latitude beyond the pole.
+            (
+                "[reference]\nlatitude = 91.0\nlongitude = 44.0\n",
+                2,
+                "reference",
+            ),
+            // Neither.
+            ("[[sensor]]\nid = 4\n", 2, "needs position"),
+        ];
+        for (text, line, msg) in cases {
+            let e = load(&format!("{text}{EST}")).unwrap_err();
+            let s = e.to_string();
+            assert!(
+                s.contains(&format!("g.toml:{line}")) && s.contains(msg),
+                "{text}: {s}"
+            );
+        }
+    }
+}

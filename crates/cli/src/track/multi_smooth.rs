@@ -96,7 +96,11 @@ impl Recorded {
     /// # Errors
     /// [`CliError::Smooth`] naming the track and step of the first failure (nothing is
     /// written).
-    pub(super) fn smooth_into(self, how: Smoothing, out: &mut TrackRows) -> Result<usize, CliError> {
+    pub(super) fn smooth_into(
+        self,
+        how: Smoothing,
+        out: &mut TrackRows,
+    ) -> Result<usize, CliError> {
         let rows = self.rows;
         let mut by_track: BTreeMap<u64, Vec<usize>> = BTreeMap::new();
         for (i, r) in rows.iter().enumerate() {
@@ -105,15 +109,20 @@ impl Recorded {
         let mut smoothed: Vec<Option<Gaussian<4>>> = vec![None; rows.len()];
         let mut count = 0;
         for (id, idx) in by_track {
-            if !idx.iter().any(|&i| rows[i].status == TrackStatus::Confirmed) {
+            if !idx
+                .iter()
+                .any(|&i| rows[i].status == TrackStatus::Confirmed)
+            {
                 continue;
             }
             let live: Vec<usize> = idx
                 .into_iter()
                 .filter(|&i| rows[i].status != TrackStatus::Deleted)
                 .collect();
-            let seq: Vec<(f64, Gaussian<4>)> =
-                live.iter().map(|&i| (rows[i].time, rows[i].estimate)).collect();
+            let seq: Vec<(f64, Gaussian<4>)> = live
+                .iter()
+                .map(|&i| (rows[i].time, rows[i].estimate))
+                .collect();
             let s = rts_rows(&self.filter, &seq, how).map_err(|f| f.into_cli(id))?;
             for (&i, g) in live.iter().zip(s) {
                 smoothed[i] = Some(g);

@@ -92,7 +92,10 @@ impl Column {
     /// The tracker's smoothed columns: `xs, vxs, ys, vys, sigma_xs, sigma_ys`.
     pub(super) fn smoothed_tracker() -> Vec<Self> {
         let mut c: Vec<Self> = (0..4).map(Self::Smoothed).collect();
-        c.extend([Self::SmoothedPositionSigma(0), Self::SmoothedPositionSigma(1)]);
+        c.extend([
+            Self::SmoothedPositionSigma(0),
+            Self::SmoothedPositionSigma(1),
+        ]);
         c
     }
 
@@ -296,9 +299,7 @@ impl TrackRows {
                 Column::Score => write!(out, "{}", p.score),
                 Column::Smoothed(i) => cell(out, p.smoothed.and_then(|(m, _)| m.get(i).copied())),
                 Column::SmoothedVariance(i) => cell(out, p.smoothed_var(i)),
-                Column::SmoothedPositionSigma(a) => {
-                    cell(out, p.smoothed_var(2 * a).map(f64::sqrt))
-                }
+                Column::SmoothedPositionSigma(a) => cell(out, p.smoothed_var(2 * a).map(f64::sqrt)),
                 Column::SmoothedMode(j) => {
                     cell(out, p.smoothed_modes.and_then(|m| m.get(j).copied()))
                 }

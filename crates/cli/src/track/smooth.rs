@@ -173,7 +173,7 @@ pub(super) fn rts_rows<const N: usize, F: SmoothingFilter<N>>(
             None => RtsStep::first(t, g),
             Some(prev) => {
                 let dt = t - prev.time();
-                if !(dt > 0.0) {
+                if dt.is_nan() || dt <= 0.0 {
                     return Err(sequence_failure(
                         &SmoothError::TimeNotIncreasing {
                             step: k,
@@ -302,5 +302,104 @@ impl<const R: usize> ImmRecorder<R> {
             )
             .map_err(|e| imm_failure(&e, j, times))
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use argus_core_math::{Matrix, Vector};
+    use argus_filters::Kf;
+    use argus_motion_models::Cv2D;
+    use argus_sensors::CartesianPosition;
+
+    /// A KF over position plots of a CV target, with two plots at t = 8 s (one step):
+    /// the rows `(t, filtered)`.
+    fn forward() -> (Kf<Cv2D>, Vec<(f64, Gaussian<4>)>) {
+        let kf = Kf::new(Cv2D::discrete(0.5).unwrap());
+        let pos = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 400.0).unwrap();
+        let mut x = Gaussian::new(
+            Vector::<4>::new(0.0, 10.0, 0.0, -5.0),
+            Matrix::<4, 4>::identity() * 1e4,
+        )
+        .unwrap();
+        let mut t = 0.0;
+        let mut rows = vec![(t, x)];
+        // Deterministic plot offsets (±20 m), irregular intervals, a repeated time.
+        for (k, dt) in [2.0, 3.0, 3.0, 0.0, 1.5, 4.0, 2.0, 2.0, 5.0, 1.0]
+            .iter()
+            .enumerate()
+        {
+            let tn = t + dt;
+            let off = if k % 2 == 0 { 20.0 } else { -20.0 };
+            let z = Vector::<2>::new(10.0 * tn + off, -5.0 * tn - off);
+            let pred = if *dt > 0.0 {
+                kf.predict(&x, *dt).unwrap()
+            } else {
+                x
+            };
+            x = kf.update(&pred, &pos, &z).unwrap().0;
+            t = tn;
+            rows.push((t, x));
+        }
+        (kf, rows)
+    }
+
+    use argus_filters::GaussianFilter as _;
+
+    #[test]
+    fn rows_of_one_time_share_a_step_and_every_covariance_shrinks() {
+        let (kf, rows) = forward();
+        let s = steps(&rows.iter().map(|r| r.0).collect::<Vec<_>>());
+        // 11 rows, rows 3 and 4 at t = 8 s: 10 steps, the step's estimate is row 4's.
+        assert_eq!(s.last_row.len(), 10);
+        assert_eq!(s.row_step[3], s.row_step[4]);
+        assert_eq!(s.last_row[s.row_step[4]], 4);
+        let sm = rts_rows(&kf, &rows, Smoothing::Interval).unwrap();
+        assert_eq!(sm[3], sm[4]);
+        // The last row is the filter's.
+        assert_eq!(sm[10], rows[10].1);
+        for ((_, f), g) in rows.iter().zip(&sm) {
+            // P − Pˢ ⪰ 0: smallest eigenvalue ≥ −1e-9 of P's largest entry (round-off).
+            let d = f.cov() - g.cov();
+            let min = d.symmetric_eigen().eigenvalues.min();
+            assert!(min >= -1e-9 * f.cov().amax(), "eigenvalue {min}");
+        }
+        // The repeated time's first row is not a step of its own: its smoothed
+        // covariance is also ≤ its own (larger) filtered one, checked above.
+    }
+
+    #[test]
+    fn lags_window_the_same_backward_pass() {
+        let (kf, rows) = forward();
+        let interval = rts_rows(&kf, &rows, Smoothing::Interval).unwrap();
+        // A lag as long as the track is the fixed-interval smoother, to the bit (the
+        // window of step 0 is the whole track, and each step's window ends at the end).
+        for lag in [Lag::Steps(9), Lag::Steps(50), Lag::Seconds(1e3)] {
+            assert_eq!(rts_rows(&kf, &rows, Smoothing::Lag(lag)).unwrap(), interval);
+        }
+        // A lag of 2 steps: step j is x̂ⱼ|ⱼ₊₂, the fixed-interval smoother of the rows
+        // up to step j + 2, at j.
+        let lag2 = rts_rows(&kf, &rows, Smoothing::Lag(Lag::Steps(2))).unwrap();
+        let upto = rts_rows(&kf, &rows[..=2], Smoothing::Interval).unwrap();
+        assert_eq!(lag2[0], upto[0]);
+        // A lag of 5 s: step 0 (t = 0) waits for t = 5 (row 2).
+        let lag5 = rts_rows(&kf, &rows, Smoothing::Lag(Lag::Seconds(5.0))).unwrap();
+        assert_eq!(lag5[0], upto[0]);
+    }
+
+    #[test]
+    fn time_going_backwards_names_the_step() {
+        let (kf, mut rows) = forward();
+        rows[6].0 = 1.0;
+        let e = rts_rows(&kf, &rows, Smoothing::Interval).unwrap_err();
+        // Row 6 is step 5 (rows 3 and 4 are one step).
+        assert_eq!((e.step, e.time), (5, 1.0));
+        assert!(e.message.contains("does not follow"), "{}", e.message);
+        let cli = e.into_cli(7).to_string();
+        assert!(
+            cli.starts_with("smoothing track 7: step 5 (t = 1 s)"),
+            "{cli}"
+        );
     }
 }

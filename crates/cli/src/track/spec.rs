@@ -153,7 +153,11 @@ fn xy_position(src: Source<'_>, id: u32, p: &Spanned<Vec<f64>>) -> Result<[f64; 
         }
     };
     if !position.iter().all(|v| v.is_finite()) {
-        return Err(src.at(p, "position", format!("sensor {id}: position must be finite")));
+        return Err(src.at(
+            p,
+            "position",
+            format!("sensor {id}: position must be finite"),
+        ));
     }
     Ok(position)
 }
