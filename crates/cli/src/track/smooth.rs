@@ -402,4 +402,42 @@ mod tests {
             "{cli}"
         );
     }
+
+    #[test]
+    fn the_imm_record_keeps_one_step_per_time() {
+        use argus_imm::{Imm, ImmEstimate, MarkovMatrix};
+        let imm = Imm::new(
+            [
+                Kf::new(Cv2D::discrete(0.1).unwrap()),
+                Kf::new(Cv2D::discrete(3.0).unwrap()),
+            ],
+            MarkovMatrix::new([[0.9, 0.1], [0.1, 0.9]]).unwrap(),
+        )
+        .unwrap();
+        let pos = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 400.0).unwrap();
+        let (_, rows) = forward();
+        let mut est = ImmEstimate::from_common(rows[0].1, [0.5, 0.5]).unwrap();
+        let mut rec = ImmRecorder::new(*imm.markov());
+        rec.record(&imm, 0.0, est).unwrap();
+        let mut t = 0.0;
+        // Plots at 2, 4, 4 (one instant twice), 7 s.
+        for (tn, off) in [(2.0, 0.0), (4.0, 1.0), (4.0, 2.0), (7.0, 3.0)] {
+            let z = Vector::<2>::new(10.0 * tn + off, -5.0 * tn);
+            est = if tn > t {
+                imm.step(&est, tn - t, &pos, &z).unwrap().estimate
+            } else {
+                imm.update(&est.into_prediction(), &pos, &z)
+                    .unwrap()
+                    .estimate
+            };
+            t = tn;
+            rec.record(&imm, t, est).unwrap();
+        }
+        let last = est.combined().unwrap();
+        let sm = rec.smooth(&imm, Smoothing::Interval).unwrap();
+        // Four times, four steps; the last is the filter's (the second update at 4 s
+        // is the step's estimate).
+        assert_eq!(sm.len(), 4);
+        assert_eq!(sm[3].combined, last);
+    }
 }
