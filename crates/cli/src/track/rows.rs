@@ -352,6 +352,20 @@ mod tests {
             names(Column::tracker(2, true, true)),
             "t,sensor,track,status,reason,x,vx,y,vy,sigma_x,sigma_y,mu_1,mu_2,sigma_range,sigma_azimuth_deg,score\n"
         );
+        // The smoothed columns (--smooth) and the geodetic ones ([reference]).
+        let mut c = Column::single(2, 2, false);
+        c.extend(Column::smoothed_single(2, 2));
+        assert_eq!(
+            names(c),
+            "t,track,x,vx,y,vy,var_x,var_vx,var_y,var_vy,mu_1,mu_2,xs,vxs,ys,vys,var_xs,var_vxs,var_ys,var_vys,mu_1s,mu_2s\n"
+        );
+        let mut c = Column::tracker(0, false, false);
+        c.extend(Column::smoothed_tracker());
+        c.extend([Column::Lat, Column::Lon]);
+        assert_eq!(
+            names(c),
+            "t,sensor,track,status,reason,x,vx,y,vy,sigma_x,sigma_y,xs,vxs,ys,vys,sigma_xs,sigma_ys,lat,lon\n"
+        );
     }
 
     #[test]
@@ -376,6 +390,21 @@ mod tests {
             multi
                 .into_text()
                 .ends_with("\n5,7,12,deleted,misses,1,2,3,4,2,3,,,,\n")
+        );
+        // A smoothed row: the smoothed mean and σ; a row without one: empty cells.
+        let h = Gaussian::new(
+            Vector::<4>::new(5.0, 6.0, 7.0, 8.0),
+            Matrix::<4, 4>::from_diagonal(&Vector::<4>::new(1.0, 0.25, 4.0, 0.0625)),
+        )
+        .unwrap();
+        let mut c = Column::tracker(0, false, false);
+        c.extend(Column::smoothed_tracker());
+        let mut s = TrackRows::new(c);
+        s.push(&Point::new(1.0, &g).smoothed(Some(&h)));
+        s.push(&Point::new(2.0, &g).smoothed::<4>(None));
+        assert!(
+            s.into_text()
+                .ends_with("\n1,0,1,,,1,2,3,4,2,3,5,6,7,8,1,2\n2,0,1,,,1,2,3,4,2,3,,,,,,\n")
         );
     }
 }
