@@ -464,6 +464,22 @@ fn bad_aircraft_configs_name_file_line_and_field() {
             "aircraft IMM needs polar plots",
         ],
     );
+    // Smoothing is not built for it (single target and tracker).
+    for extra in ["", "\n[tracker]"] {
+        std::fs::write(d.join("a.toml"), cfg(extra)).unwrap();
+        let o = argus(
+            &[
+                "track", "--config", "a.toml", "--plots", "p.csv", "--out", "s.csv", "--smooth",
+            ],
+            d,
+        );
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_error(
+            o.status.code(),
+            &err,
+            &["field 'estimator.kind'", "--smooth"],
+        );
+    }
     // Single-target: a Cartesian report, and a plot of another sensor.
     let (code, err, _) = track_cfg(d, "a.toml", &cfg(""), "cart.csv");
     assert_error(code, &err, &["cart.csv:2", "field 'sensor'", "polar plots"]);

@@ -67,7 +67,7 @@ pub(super) fn run(
         })?;
     let mut columns = Column::single(2, 3, false);
     columns.extend(Column::TURN_RATE);
-    let mut rows = TrackRows::new(columns);
+    let mut rows = TrackRows::with_reference(columns, ctx.reference);
     let mut t = p2.time();
     push(&mut rows, t, &est).map_err(ctx.imm_error(p2))?;
     for p in plots.get(2..).unwrap_or(&[]) {
