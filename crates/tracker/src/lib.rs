@@ -129,6 +129,7 @@ mod jpda;
 mod management;
 mod pda;
 mod plot;
+mod rotation;
 mod state;
 mod track;
 mod tracker;
@@ -140,6 +141,7 @@ pub use config::{
 };
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
+pub use rotation::{Rotation, RotationDirection};
 pub use state::MULTI_IMM_HYPOTHESES;
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};
