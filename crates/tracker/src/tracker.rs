@@ -425,6 +425,7 @@ impl Tracker {
                 report.assigned += 1;
             }
             track.estimate = posterior;
+            track.revision = track.revision.wrapping_add(1);
             track.time = time;
             add_score(
                 &self.config,

@@ -424,7 +424,7 @@ fn time_order_and_misuse_are_typed_errors_that_leave_the_tracker_unchanged() {
     // A plot before one already given names that plot.
     let err = tracker.process(&[plot(3.0), plot(2.5)]).unwrap_err();
     assert!(
-        matches!(err, TrackerError::TimeOrder { index: 1, time, previous } if time == 2.5 && previous == 3.0),
+        matches!(err, TrackerError::TimeOrder { index: 1, time, previous } if time.to_bits() == 2.5_f64.to_bits() && previous.to_bits() == 3.0_f64.to_bits()),
         "{err:?}"
     );
     let err = tracker.process(&[plot(1.5)]).unwrap_err();

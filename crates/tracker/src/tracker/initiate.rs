@@ -101,7 +101,8 @@ impl Tracker {
                 score,
                 peak_score: score,
                 state,
-                visits: Vec::new(),
+                looks: Vec::new(),
+                revision: 0,
             };
             matched[row] = true;
             self.used[j] = true;

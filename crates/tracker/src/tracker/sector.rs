@@ -7,6 +7,7 @@ use argus_core_math::Vector;
 
 use super::{ScanReport, Tracker};
 use crate::estimator::Estimator;
+use crate::track::Look;
 use crate::{
     AssociationConfig, DeletionReason, EstimatorConfig, Plot, Rotation, SensorId, Track,
     TrackStatus, TrackerConfig, TrackerError,
@@ -259,20 +260,29 @@ impl Tracker {
         // Which tracks the beam looks at, and when.
         self.roles.clear();
         let mut looks = 0;
-        for track in &self.tracks {
-            let not_before = track
-                .visits
-                .get(s)
-                .map_or(f64::NEG_INFINITY, |v| v + 0.5 * rot.period);
-            let sweep = Sweep {
-                rot: &rot,
-                origin: &sensor.position,
-                noise: sensor.polar.map(|pm| pm.sigmas),
-                r_trace: r_max[0] + r_max[1],
-                gamma,
-                sigma_a,
-            };
-            let role = sweep.role(track, t0, t_close, not_before);
+        let sweep = Sweep {
+            rot: &rot,
+            origin: &sensor.position,
+            noise: sensor.polar.map(|pm| pm.sigmas),
+            r_trace: r_max[0] + r_max[1],
+            gamma,
+            sigma_a,
+        };
+        for track in &mut self.tracks {
+            let look = track.looks.get(s).copied().unwrap_or(Look::NONE);
+            // The last computation said the beam reaches its gate only after this sector.
+            if look.revision == track.revision && look.quiet_until >= t_close {
+                self.roles.push(Role::Out);
+                continue;
+            }
+            let not_before = look.visited + 0.5 * rot.period;
+            let (role, quiet_until) = sweep.role(track, t0, t_close, not_before);
+            if let Some(q) = quiet_until {
+                let revision = track.revision;
+                let l = look_mut(track, s);
+                l.quiet_until = q;
+                l.revision = revision;
+            }
             looks += usize::from(matches!(role, Role::Look { .. }));
             self.roles.push(role);
         }
@@ -405,6 +415,7 @@ impl Tracker {
                 report.assigned += 1;
             }
             track.estimate = posterior;
+            track.revision = track.revision.wrapping_add(1);
             track.time = track.time.max(at);
             super::add_score(
                 &self.config,
@@ -438,12 +449,17 @@ impl Tracker {
     }
 }
 
+/// Sensor `s`'s memory of `track`, made when missing.
+fn look_mut(track: &mut Track, s: usize) -> &mut Look {
+    if track.looks.len() <= s {
+        track.looks.resize(s + 1, Look::NONE);
+    }
+    &mut track.looks[s]
+}
+
 /// Records that `track` had its opportunity from sensor `s` at `t`.
 fn visit(track: &mut Track, s: usize, t: f64) {
-    if track.visits.len() <= s {
-        track.visits.resize(s + 1, f64::NEG_INFINITY);
-    }
-    track.visits[s] = t;
+    look_mut(track, s).visited = t;
 }
 
 /// The acceleration σ that bounds a track's position uncertainty growth for the sweep
@@ -505,8 +521,10 @@ impl Sweep<'_> {
     /// The track's role in the sector `[t0, t_close)` when its next opportunity cannot
     /// come before `not_before`: the first beam crossing of its predicted azimuth whose
     /// sweep of its gate has not ended before `t0` (refined twice on the extrapolated
-    /// azimuth), looked at when that sweep starts before `t_close`.
-    fn role(&self, track: &Track, t0: f64, t_close: f64, not_before: f64) -> Role {
+    /// azimuth), looked at when that sweep starts before `t_close`. With it, when the
+    /// sweep starts after `t_close`, that start: no later sector ending before it needs
+    /// to look again while the track's estimate is unchanged.
+    fn role(&self, track: &Track, t0: f64, t_close: f64, not_before: f64) -> (Role, Option<f64>) {
         let half0 = self.half_sweep(track, t0);
         let after = (t0 - half0).max(not_before);
         let (x, y) = self.relative(track, after);
@@ -518,12 +536,16 @@ impl Sweep<'_> {
                 .crossing_after(y.atan2(x), tc - 0.5 * self.rot.period);
         }
         let half = self.half_sweep(track, tc);
-        if tc <= not_before || tc - half >= t_close {
-            return Role::Out;
+        if tc <= not_before {
+            return (Role::Out, None);
         }
-        Role::Look {
+        if tc - half >= t_close {
+            return (Role::Out, Some(tc - half));
+        }
+        let role = Role::Look {
             time: tc,
             closes: tc + half < t_close,
-        }
+        };
+        (role, None)
     }
 }
