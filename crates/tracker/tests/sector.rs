@@ -455,3 +455,101 @@ fn time_order_and_misuse_are_typed_errors_that_leave_the_tracker_unchanged() {
         "the plot at 2.0 (1.0 was in the sector before)"
     );
 }
+
+#[test]
+fn every_estimator_and_association_tracks_the_rotating_radar_without_a_miss() {
+    // Test 1's picture for the EKF, the IMM, and JPDA (with the KF and the IMM): the same
+    // exact counts, since the sector step is the scan's association and update on the
+    // tracks the beam sweeps, whatever they run.
+    let targets = six_targets();
+    let end = 30.0 * P;
+    let sim = simulate(&[radar1()], &targets, end, 1.0, 15);
+    let imm = EstimatorConfig::ImmCv2 {
+        sigma_a_low: 0.5,
+        sigma_a_high: 10.0,
+        p_stay: 0.95,
+    };
+    let jpda = argus_tracker::AssociationConfig::Jpda {
+        p_detection: 0.99,
+        clutter_density: 1.4e-10,
+        max_exact_events: 1000,
+    };
+    let gnn = argus_tracker::AssociationConfig::Gnn;
+    for (estimator, association) in [
+        (EstimatorConfig::Ekf, gnn),
+        (imm, gnn),
+        (EstimatorConfig::Kf, jpda),
+        (imm, jpda),
+    ] {
+        let mut cfg = config([radar1().config()]);
+        cfg.estimator = estimator;
+        cfg.association = association;
+        let mut tracker = Tracker::new(cfg).unwrap();
+        run(&mut tracker, &sim.plots, end);
+        let tracks = all_tracks(&tracker);
+        assert_eq!(tracks.len(), targets.len(), "{estimator:?} {association:?}");
+        for tr in tracks {
+            let k = target_of(tr, &targets);
+            assert_eq!(
+                tr.status(),
+                TrackStatus::Confirmed,
+                "{estimator:?} {association:?}"
+            );
+            assert_eq!(
+                tr.opportunities(),
+                tr.hits(),
+                "{estimator:?} {association:?}: target {k} missed"
+            );
+            assert_eq!(tr.hits() as usize, sim.detected[k]);
+        }
+    }
+}
+
+#[test]
+fn a_synchronous_sensor_and_a_rotating_radar_interleave() {
+    // Radar 1 (rotating) and sensor 2, synchronous Cartesian scans of every target every
+    // 4 s (σ 100 m), in one time-ordered stream: the sectors due are processed before
+    // each scan, every track is updated by both and never misses (P_D = 1 for both).
+    let targets = six_targets();
+    let end = 30.0 * P;
+    let sim = simulate(&[radar1()], &targets, end, 1.0, 16);
+    let mut rng = run_rng(16, 1);
+    let r = argus_core_math::Matrix::<2, 2>::identity() * 1.0e4;
+    let mut stream: Vec<Plot> = sim.plots.clone();
+    let mut k = 0;
+    while 0.3 + 4.0 * f64::from(k) < end {
+        let t = 0.3 + 4.0 * f64::from(k);
+        for target in &targets {
+            let p = target.at(t);
+            let (nx, ny): (f64, f64) = (
+                StandardNormal.sample(&mut rng),
+                StandardNormal.sample(&mut rng),
+            );
+            let z = argus_core_math::Vector::<2>::new(p[0] + 100.0 * nx, p[1] + 100.0 * ny);
+            stream.push(Plot::cartesian(t, SensorId(2), z, r).unwrap());
+        }
+        k += 1;
+    }
+    stream.sort_by(|a, b| a.time().total_cmp(&b.time()));
+    let cfg = config([radar1().config(), SensorConfig::cartesian(SensorId(2))]);
+    let mut tracker = Tracker::new(cfg).unwrap();
+    // One call: a scan is the consecutive plots of one time and synchronous sensor.
+    let mut reports = tracker.process(&stream).unwrap();
+    reports.extend(tracker.advance_to(end).unwrap());
+    let scans = reports.iter().filter(|r| !r.sector).count();
+    assert_eq!(scans, k as usize, "one report per synchronous scan");
+    assert!(
+        reports
+            .iter()
+            .filter(|r| !r.sector)
+            .all(|r| r.sensor == SensorId(2))
+    );
+    let tracks = all_tracks(&tracker);
+    assert_eq!(tracks.len(), targets.len());
+    for tr in tracks {
+        assert_eq!(tr.status(), TrackStatus::Confirmed);
+        assert_eq!(tr.opportunities(), tr.hits(), "{:?} missed", tr.id());
+        // Both sensors' plots: more than one revolution's worth per revolution.
+        assert!(tr.hits() as usize > sim.detected[target_of(tr, &targets)] + 20);
+    }
+}
