@@ -114,6 +114,15 @@
 //! [`ScanReport`] with its span (`start`, `time`), its sensor, and the tracks it
 //! `visited` (updated or missed).
 //!
+//! The densities of [`ScoreConfig`] and [`AssociationConfig::Jpda`] are per scan: for a
+//! rotating radar, per revolution (a track has one opportunity per revolution). A target
+//! that passes over the radar, whose azimuth turns by about π between two sweeps, can be
+//! swept twice within half a revolution: the second is not an opportunity (one row less).
+//! Cost: each sector computes the beam crossing only of the tracks that may be due (a
+//! track remembers, per rotating sensor, until when no sector sweeps its gate, as long as
+//! its estimate is unchanged); the rest is the scan's work on the sector's plots and
+//! those tracks (`tracker_sector_step` in `docs/BENCHMARKS.md`).
+//!
 //! Rotating sensors are not built with the multi-IMM estimator (refused by the
 //! configuration), and their plots do not go through [`Tracker::process_scan`].
 //!
