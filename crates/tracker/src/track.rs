@@ -53,6 +53,33 @@ pub struct Track {
     pub(crate) score: f64,
     pub(crate) peak_score: f64,
     pub(crate) state: TrackState,
+    /// Per sensor index, what rotating sensors know of this track (empty until one
+    /// looks at it; missing entries: never looked at).
+    pub(crate) looks: Vec<Look>,
+    /// Incremented at every change of the estimate (so that a [`Look`]'s hint computed
+    /// from an older estimate is not used).
+    pub(crate) revision: u64,
+}
+
+/// A rotating sensor's memory of one track.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Look {
+    /// The time of its last opportunity from the sensor (−∞: none yet).
+    pub(crate) visited: f64,
+    /// No sector ending at or before this time sweeps its gate (valid for
+    /// [`Look::revision`] only).
+    pub(crate) quiet_until: f64,
+    /// The track's revision when `quiet_until` was computed.
+    pub(crate) revision: u64,
+}
+
+impl Look {
+    /// Nothing known.
+    pub(crate) const NONE: Self = Self {
+        visited: f64::NEG_INFINITY,
+        quiet_until: f64::NEG_INFINITY,
+        revision: u64::MAX,
+    };
 }
 
 impl Track {
