@@ -46,6 +46,7 @@ mod gimpo;
 mod launch;
 mod maneuver_1d;
 mod rbs_landing;
+mod real_traffic;
 mod surveillance;
 
 /// The experiments' own APIs (configuration, one run, statistics) under the scenarios
@@ -68,4 +69,4 @@ pub use error::{ParamProblem, ScenarioError};
 pub use params::{ParamSpec, Params};
 pub use registry::{all, find};
 pub use report::{Figure, Line, LineStyle, Report, Row, Series};
-pub use scenario::Scenario;
+pub use scenario::{Scenario, Simulated, TruthRow};
