@@ -1,7 +1,7 @@
 //! Tracker configuration, validated once by [`crate::Tracker::new`].
 
 use crate::field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
-use crate::{SensorId, TrackerError};
+use crate::{Rotation, SensorId, TrackerError};
 
 /// Everything the tracker needs to know. Build it with [`TrackerConfig::new`] (the
 /// defaults below) and change the public fields; [`crate::Tracker::new`] validates it.
@@ -45,6 +45,9 @@ pub struct TrackerConfig {
     pub estimator: EstimatorConfig,
     /// How confirmed tracks use the plots. Default [`AssociationConfig::Gnn`].
     pub association: AssociationConfig,
+    /// The fraction of a revolution of a rotating sensor ([`SensorConfig::rotation`])
+    /// processed as one sector, in (0, 1]. Default 1/8. Unused without rotating sensors.
+    pub sector_fraction: f64,
 }
 
 /// One sensor: its id, its position and, if it sends polar plots, their noise.
@@ -61,6 +64,10 @@ pub struct SensorConfig {
     pub position: [f64; 2],
     /// The noise of its polar plots (`None`: it sends Cartesian plots only).
     pub polar_noise: Option<PolarNoise>,
+    /// `Some` for a rotating radar whose plots each have their own time (processed by
+    /// sectors, see the crate docs); `None` (the default) for a sensor whose plots come
+    /// in synchronous scans (all plots of a scan at one time).
+    pub rotation: Option<Rotation>,
 }
 
 /// Standard deviations of a polar plot's range and azimuth.
@@ -80,6 +87,7 @@ impl SensorConfig {
             id,
             position: [0.0, 0.0],
             polar_noise: None,
+            rotation: None,
         }
     }
 
@@ -94,6 +102,16 @@ impl SensorConfig {
                 sigma_range,
                 sigma_azimuth,
             }),
+            rotation: None,
+        }
+    }
+
+    /// This sensor as a rotating radar ([`SensorConfig::rotation`]).
+    #[must_use]
+    pub fn with_rotation(self, rotation: Rotation) -> Self {
+        Self {
+            rotation: Some(rotation),
+            ..self
         }
     }
 
@@ -126,6 +144,9 @@ impl SensorConfig {
                     return bad(field, v, "must be finite and positive");
                 }
             }
+        }
+        if let Some(r) = &self.rotation {
+            r.validate()?;
         }
         Ok(())
     }
@@ -326,6 +347,7 @@ impl TrackerConfig {
             score: None,
             estimator: EstimatorConfig::Kf,
             association: AssociationConfig::Gnn,
+            sector_fraction: 0.125,
         }
     }
 
@@ -397,6 +419,10 @@ impl TrackerConfig {
         if self.max_misses == 0 {
             return bad(ConfigField::MaxMisses, 0.0, "must be at least 1");
         }
+        let f = self.sector_fraction;
+        if !(f.is_finite() && f > 0.0 && f <= 1.0) {
+            return bad(ConfigField::SectorFraction, f, "must lie in (0, 1]");
+        }
         if let Some(score) = &self.score {
             score.validate()?;
         }
@@ -435,6 +461,13 @@ impl TrackerConfig {
                         ConfigField::Sensor(SensorField::PolarNoise),
                         f64::from(s.id.0),
                         "the multi-IMM needs every sensor's polar noise",
+                    );
+                }
+                if let Some(r) = self.sensors.iter().find_map(|s| s.rotation) {
+                    return bad(
+                        ConfigField::Sensor(SensorField::RevolutionPeriod),
+                        r.period,
+                        "the multi-IMM with rotating sensors is not built",
                     );
                 }
                 Some((sigma_a_low, sigma_a_high, p_stay))

@@ -34,6 +34,8 @@ pub enum ConfigField {
     MaxPositionSigma,
     /// [`crate::TrackerConfig::grid_cell`].
     GridCell,
+    /// [`crate::TrackerConfig::sector_fraction`].
+    SectorFraction,
     /// A field of [`crate::TrackerConfig::score`].
     Score(ScoreField),
     /// [`crate::TrackerConfig::estimator`] or one of its parameters.
@@ -56,6 +58,10 @@ pub enum SensorField {
     SigmaRange,
     /// [`crate::PolarNoise::sigma_azimuth`].
     SigmaAzimuth,
+    /// [`crate::Rotation::period`] (also: a rotation the estimator cannot take).
+    RevolutionPeriod,
+    /// [`crate::Rotation::north_time`].
+    NorthTime,
 }
 
 /// A field of a [`crate::ScoreConfig`].
@@ -120,6 +126,8 @@ impl ConfigField {
                 SensorField::PolarNoise => "sensors.polar_noise",
                 SensorField::SigmaRange => "sensors.polar_noise.sigma_range",
                 SensorField::SigmaAzimuth => "sensors.polar_noise.sigma_azimuth",
+                SensorField::RevolutionPeriod => "sensors.rotation.period",
+                SensorField::NorthTime => "sensors.rotation.north_time",
             },
             Self::SigmaA => "sigma_a",
             Self::GateProbability => "gate_probability",
@@ -131,6 +139,7 @@ impl ConfigField {
             Self::MaxMisses => "max_misses",
             Self::MaxPositionSigma => "max_position_sigma",
             Self::GridCell => "grid_cell",
+            Self::SectorFraction => "sector_fraction",
             Self::Score(f) => match f {
                 ScoreField::PDetection => "score.p_detection",
                 ScoreField::ClutterDensity => "score.clutter_density",

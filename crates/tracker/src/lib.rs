@@ -71,6 +71,52 @@
 //!    differencing ([`argus_filters::two_point_cv2`]). Plots still unused wait as
 //!    first points.
 //!
+//! # One sector (rotating radars)
+//! A sensor with a [`Rotation`] ([`SensorConfig::with_rotation`]) is a rotating radar:
+//! its beam's azimuth is `β(t) = π/2 ∓ 2π (t − north_time) / period` (Argus's azimuth,
+//! counter-clockwise from east; − clockwise), and each plot has its own time, the time
+//! the beam crossed what it saw. Its plots are not scans: [`Tracker::process`] buffers
+//! them into **sectors**, time windows of [`TrackerConfig::sector_fraction`] × period
+//! aligned to `north_time` (`[north_time + k L, north_time + (k + 1) L)`), and processes
+//! a sector when a plot (of any sensor) at or after its end arrives, or on
+//! [`Tracker::advance_to`] (time passed with no plot, e.g. a sector or north marker)
+//! and [`Tracker::flush`] (the end of a stream: up to the last time seen). Sectors in
+//! which nothing can happen (no plot, no track swept) are skipped without a report.
+//! 1. **Which tracks.** For each live track the beam's crossing time `t_c` of its
+//!    azimuth (extrapolated on its mean velocity, refined twice) and the half-time
+//!    `τ` the beam takes to sweep its gate (the gate's bounding circle
+//!    `√(γ (tr P_pos(t_c) + R))` seen from the radar, `R` the larger of the sector's
+//!    plots' and the radar's noise at that range). A track takes part in the sector when
+//!    the sweep starts before the sector's end, `t_c − τ < t_end`, and it has had no
+//!    opportunity from this radar in the last half revolution (so at most one per
+//!    revolution: once updated or missed, it waits until the beam comes round).
+//! 2. **Gating and association** as in a scan (steps 2–3 below): one global GNN (or
+//!    JPDA) over the sector's plots and those tracks, each predicted to its own `t_c`.
+//! 3. **Update, miss or carry.** A track assigned a plot is predicted to the plot's own
+//!    time and updated with it (JPDA: its mixture at `t_c`). A track with no plot
+//!    **misses only when the beam has left its gate within the sector**
+//!    (`t_c + τ < t_end`), never because of another target's plot; otherwise its gate
+//!    straddles the sector's end and it is carried to the next sector untouched.
+//!    Confirmation and deletion count these opportunities as a scan counts its own.
+//! 4. **Initiation** pairs the unused plots with unused plots at least half a
+//!    revolution older (from an earlier revolution), each at its own time in the
+//!    velocity gate; the new track's time is its second plot's.
+//!
+//! **Several radars.** Plots of several sensors, rotating or not, interleave in one
+//! time-ordered stream. Before a plot at `t` is taken, every sector (of any rotating
+//! sensor) ending at or before `t` is processed, in order of their ends; a synchronous
+//! sensor's plots form their scan at `t` after that. A sector is therefore processed
+//! only when every plot before its end has arrived. Sectors of two radars overlap in
+//! time, so a track updated by radar A's sector at `t_a` may be offered a plot of radar
+//! B's later-ending sector taken before `t_a`: a track is never predicted backwards, such
+//! a plot updates it at its own time `t_a` (a lag of at most one sector of B; sectors of
+//! 1/8 revolution keep it under 0.7 s for a 5-s radar). Each sector yields a
+//! [`ScanReport`] with its span (`start`, `time`), its sensor, and the tracks it
+//! `visited` (updated or missed).
+//!
+//! Rotating sensors are not built with the multi-IMM estimator (refused by the
+//! configuration), and their plots do not go through [`Tracker::process_scan`].
+//!
 //! # Bad input
 //! A plot with a non-finite value, a negative range or a covariance that is not symmetric
 //! positive definite cannot be built ([`Plot`]'s constructors refuse it). Plots out of
@@ -83,9 +129,13 @@
 //!
 //! # API for the CLI
 //! Build a [`TrackerConfig`] (public fields, validated by [`Tracker::new`]), then feed
-//! plots with [`Tracker::process`] (a stream; consecutive plots of one time and sensor
-//! form a scan) or [`Tracker::process_scan`] (one scan, possibly empty). Each returns
-//! [`ScanReport`]s (ids initiated, confirmed, deleted). After each scan,
+//! plots with [`Tracker::process`] (a stream; consecutive plots of one time and
+//! synchronous sensor form a scan, a rotating sensor's go into its sectors) or
+//! [`Tracker::process_scan`] (one synchronous scan, possibly empty), and with rotating
+//! sensors [`Tracker::advance_to`] and [`Tracker::flush`] ([`Tracker::next_sector_end`]
+//! says when the next sector closes, so a caller can step sector by sector). Each
+//! returns [`ScanReport`]s (ids initiated, confirmed, deleted; for a sector, the tracks
+//! visited). After each scan,
 //! [`Tracker::tracks`] gives every live track's id, [`TrackStatus`] and estimate, and
 //! [`Tracker::deleted`] / [`Tracker::take_deleted`] the deleted ones with their
 //! [`DeletionReason`]: enough for `argus track --config` to write every track's states
@@ -129,6 +179,7 @@ mod jpda;
 mod management;
 mod pda;
 mod plot;
+mod rotation;
 mod state;
 mod track;
 mod tracker;
@@ -140,6 +191,7 @@ pub use config::{
 };
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
+pub use rotation::{Rotation, RotationDirection};
 pub use state::MULTI_IMM_HYPOTHESES;
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};

@@ -53,6 +53,9 @@ pub struct Track {
     pub(crate) score: f64,
     pub(crate) peak_score: f64,
     pub(crate) state: TrackState,
+    /// Per sensor index, the time of this track's last opportunity from that rotating
+    /// sensor (empty until a rotating sensor gives it one; missing entries: never).
+    pub(crate) visits: Vec<f64>,
 }
 
 impl Track {
