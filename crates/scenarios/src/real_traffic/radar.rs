@@ -250,8 +250,7 @@ mod tests {
             assert!(wrap_angle(beam - m.azimuth()).abs() < 1e-9);
         }
         assert!(
-            seen
-                .windows(2)
+            seen.windows(2)
                 .all(|w| w[0].plot.time() <= w[1].plot.time())
         );
         assert!((r.clutter_density() - 1.4147e-10).abs() < 1e-13);

@@ -4,7 +4,8 @@ use argus_geo::Geodetic;
 use argus_score::{ScoreConfig, Scorer, TrackHistory, TrackRow, TruthPath, TruthSample};
 use argus_sim::{ChaCha8Rng, Rotation, run_rng};
 use argus_tracker::{
-    AssociationConfig, EstimatorConfig, Plot, SensorConfig, TrackStatus, Tracker, TrackerConfig,
+    AssociationConfig, EstimatorConfig, Plot, RotationDirection, SensorConfig, TrackStatus,
+    Tracker, TrackerConfig,
 };
 use serde::{Deserialize, Serialize};
 
@@ -124,6 +125,48 @@ pub(super) fn params() -> Vec<ParamSpec> {
             1.0,
             100.0,
             "a confirmed track is deleted after this many consecutive misses",
+        ),
+        ParamSpec::new(
+            "max_speed",
+            350.0,
+            1.0,
+            2000.0,
+            "two-point initiation: the fastest aircraft (m/s)",
+        ),
+        ParamSpec::new(
+            "init_revolutions",
+            2.4,
+            1.01,
+            10.0,
+            "two-point initiation: an unused plot waits this many revolutions for its pair",
+        ),
+        ParamSpec::new(
+            "score",
+            0.0,
+            0.0,
+            1.0,
+            "1: confirm and delete by track score (SPRT, with the clutter density), 0: M of N",
+        ),
+        ParamSpec::new(
+            "false_confirm",
+            1e-4,
+            1e-12,
+            0.4,
+            "track score: probability of confirming a false track",
+        ),
+        ParamSpec::new(
+            "delete_drop",
+            9.0,
+            0.1,
+            100.0,
+            "track score: a confirmed track is deleted this far below its peak score",
+        ),
+        ParamSpec::new(
+            "new_target_density",
+            1e-11,
+            1e-20,
+            1e-3,
+            "track score: new targets per m² per revolution",
         ),
         ParamSpec::new(
             "jpda_max_events",
@@ -318,7 +361,20 @@ impl Setup {
         let mut configs = Vec::with_capacity(self.trackers.len());
         let mut map_tracks = Vec::new();
         for (k, named) in self.trackers.iter().enumerate() {
-            let histories = track(&named.config, &plots, self.radar.period * 0.125)?;
+            let histories = track(
+                &named.config,
+                &plots,
+                self.radar.period * named.config.sector_fraction,
+            )?;
+            if let Ok(path) = std::env::var("ARGUS_DEBUG_TRACKS") {
+                let mut t = String::from("t,track,status,x,vx,y,vy\n");
+                for h in &histories {
+                    for r in h.rows() {
+                        t.push_str(&format!("{},{},{},{},{},{},{}\n", r.t, h.name(), if r.confirmed {"confirmed"} else {"tentative"}, r.x, r.vx, r.y, r.vy));
+                    }
+                }
+                std::fs::write(format!("{path}.{}.csv", named.name), t).ok();
+            }
             if k == 0 {
                 for h in &histories {
                     let mut next = f64::NEG_INFINITY;
@@ -382,18 +438,38 @@ impl Setup {
 
 /// The tracker configurations: GNN and JPDA, each with a KF and the two-CV IMM per track.
 fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
+    let direction = match radar.rotation {
+        Rotation::Clockwise => RotationDirection::Clockwise,
+        Rotation::Counterclockwise => RotationDirection::Counterclockwise,
+    };
+    let rotation = argus_tracker::Rotation::clockwise(radar.period)
+        .with_direction(direction)
+        .with_north_time(radar.north_time);
     let sensor = SensorConfig::polar(
         argus_tracker::SensorId(RADAR),
         [0.0, 0.0],
         radar.sigma_range,
         radar.sigma_azimuth,
-    );
+    )
+    .with_rotation(rotation);
     let mut base = TrackerConfig::new(vec![sensor]);
     base.sigma_a = p.get("kf_sigma_a")?;
+    base.sector_fraction = p.get("sector_fraction")?;
     base.confirm_m = p.get("confirm_m")? as u32;
     base.confirm_n = p.get("confirm_n")? as u32;
     base.max_misses = p.get("max_misses")? as u32;
-    base.max_initiation_interval = 2.4 * radar.period;
+    base.max_initiation_interval = p.get("init_revolutions")? * radar.period;
+    base.max_speed = p.get("max_speed")?;
+    if p.get("score")? == 1.0 {
+        base.score = Some(argus_tracker::ScoreConfig {
+            p_detection: radar.p_detection,
+            clutter_density: radar.clutter_density().max(1e-12),
+            new_target_density: p.get("new_target_density")?,
+            false_confirm: p.get("false_confirm")?,
+            missed_confirm: 0.01,
+            delete_drop: p.get("delete_drop")?,
+        });
+    }
     let imm = EstimatorConfig::ImmCv2 {
         sigma_a_low: p.get("imm_sigma_low")?,
         sigma_a_high: p.get("imm_sigma_high")?,
@@ -478,6 +554,7 @@ pub(crate) fn track(
         record(&mut tracker);
         start += len;
     }
+    tracker.flush();
     record(&mut tracker);
     rows.into_iter()
         .filter(|(_, r)| !r.is_empty())
