@@ -26,7 +26,8 @@ pub(super) struct File {
 }
 
 /// A `[[sensor]]`: id and position (`[x, y]` or `[x, y, z]`); polar sensors also their
-/// noise, spherical ones also the elevation noise.
+/// noise, spherical ones also the elevation noise; a rotating radar its revolution
+/// period, direction and north time (for the multi-target tracker).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SensorTable {
@@ -35,6 +36,19 @@ pub(super) struct SensorTable {
     pub(super) sigma_range: Option<Spanned<f64>>,
     pub(super) sigma_azimuth_deg: Option<Spanned<f64>>,
     pub(super) sigma_elevation_deg: Option<Spanned<f64>>,
+    pub(super) revolution_period: Option<Spanned<f64>>,
+    pub(super) rotation: Option<Spanned<RotationKind>>,
+    pub(super) north_time: Option<Spanned<f64>>,
+}
+
+/// `rotation` of a rotating `[[sensor]]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RotationKind {
+    /// North → east (the default).
+    Clockwise,
+    /// North → west.
+    Counterclockwise,
 }
 
 /// Estimator kinds.
@@ -115,6 +129,7 @@ pub(super) struct TrackerTable {
     pub(super) max_misses: Option<Spanned<toml::Value>>,
     pub(super) max_position_sigma: Option<Spanned<toml::Value>>,
     pub(super) grid_cell: Option<Spanned<toml::Value>>,
+    pub(super) sector_fraction: Option<Spanned<toml::Value>>,
     pub(super) score: Option<Spanned<ScoreTable>>,
 }
 

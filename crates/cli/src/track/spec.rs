@@ -5,9 +5,10 @@
 
 use argus_imm::PROBABILITY_SUM_TOL;
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
+use argus_tracker::{Rotation, RotationDirection};
 use toml::Spanned;
 
-use super::schema::{EstimatorKind, EstimatorTable, ModelKind, SensorTable, Source};
+use super::schema::{EstimatorKind, EstimatorTable, ModelKind, RotationKind, SensorTable, Source};
 use crate::error::CliError;
 
 /// A checked sensor.
@@ -20,6 +21,9 @@ pub(super) struct Sensor {
     pub(super) polar: Option<(f64, f64)>,
     /// Elevation σ (rad).
     pub(super) sigma_elevation: Option<f64>,
+    /// A rotating radar's beam (used by the multi-target tracker, whose configuration
+    /// checks its values; the single-target estimators take each plot at its time).
+    pub(super) rotation: Option<Rotation>,
 }
 
 /// A checked estimator: its kind and the CV model's white-acceleration σ (m/s²), or the
@@ -134,9 +138,41 @@ pub(super) fn sensors(src: Source<'_>, tables: &[SensorTable]) -> Result<Vec<Sen
             position,
             polar,
             sigma_elevation,
+            rotation: rotation(src, id, s)?,
         });
     }
     Ok(sensors)
+}
+
+/// A sensor's `revolution_period`, `rotation` (default clockwise) and `north_time`
+/// (default 0): the last two need the first.
+fn rotation(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<Rotation>, CliError> {
+    let Some(period) = &s.revolution_period else {
+        if let Some(r) = &s.rotation {
+            return Err(src.at(
+                r,
+                "rotation",
+                format!("sensor {id}: needs revolution_period"),
+            ));
+        }
+        if let Some(n) = &s.north_time {
+            return Err(src.at(
+                n,
+                "north_time",
+                format!("sensor {id}: needs revolution_period"),
+            ));
+        }
+        return Ok(None);
+    };
+    let direction = match s.rotation.as_ref().map(|r| *r.get_ref()) {
+        None | Some(RotationKind::Clockwise) => RotationDirection::Clockwise,
+        Some(RotationKind::Counterclockwise) => RotationDirection::Counterclockwise,
+    };
+    Ok(Some(Rotation {
+        period: *period.get_ref(),
+        direction,
+        north_time: s.north_time.as_ref().map_or(0.0, |n| *n.get_ref()),
+    }))
 }
 
 /// Checks `[estimator]` and fills in its defaults.

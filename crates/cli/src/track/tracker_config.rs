@@ -120,6 +120,7 @@ impl Cx<'_> {
                 sigma_range,
                 sigma_azimuth,
             }),
+            rotation: s.rotation,
         }));
         c.gate_probability = self.number_or(
             t.gate_probability.as_ref(),
@@ -146,6 +147,11 @@ impl Cx<'_> {
             c.max_position_sigma,
         )?;
         c.grid_cell = self.number_or(t.grid_cell.as_ref(), "tracker.grid_cell", c.grid_cell)?;
+        c.sector_fraction = self.number_or(
+            t.sector_fraction.as_ref(),
+            "tracker.sector_fraction",
+            c.sector_fraction,
+        )?;
         if let Some(s) = &t.score {
             let s = s.get_ref();
             c.score = Some(ScoreConfig {
