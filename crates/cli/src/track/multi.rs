@@ -28,14 +28,21 @@ pub(super) struct Files<'a> {
 }
 
 /// The tracks CSV's columns for a configuration: the IMMs add the mode probabilities,
-/// the multi-IMM its noise estimate, track-score management the score.
+/// the multi-IMM its noise estimate, the aircraft IMM its turn rate (before the score),
+/// track-score management the score.
 fn columns(c: &TrackerConfig) -> Vec<Column> {
     let (modes, noise) = match c.estimator {
         EstimatorConfig::Kf | EstimatorConfig::Ekf => (0, false),
         EstimatorConfig::ImmCv2 { .. } => (2, false),
         EstimatorConfig::MultiImm { .. } => (2, true),
+        EstimatorConfig::Aircraft { .. } => (3, false),
     };
-    Column::tracker(modes, noise, c.score.is_some())
+    let mut cols = Column::tracker(modes, noise, c.score.is_some());
+    if matches!(c.estimator, EstimatorConfig::Aircraft { .. }) {
+        let at = cols.len() - usize::from(c.score.is_some());
+        cols.splice(at..at, Column::TURN_RATE);
+    }
+    cols
 }
 
 /// One row: the track's state at its time, as produced by the scan of `sensor`.
@@ -44,8 +51,9 @@ fn row(out: &mut TrackRows, sensor: SensorId, track: &Track) {
     let mu = track.mode_probabilities();
     let p = Point::new(track.time(), track.estimate())
         .of_track(sensor.0, track.id().0, status_name(track.status()), reason)
-        .modes(mu.as_ref().map(<[f64; 2]>::as_slice))
+        .modes(mu.as_ref().map(|m| m.as_slice()))
         .noise(track.noise_estimate())
+        .turn_rate(track.turn_rate())
         .score(track.score());
     out.push(&p);
 }

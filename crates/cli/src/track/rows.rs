@@ -37,6 +37,10 @@ pub(super) enum Column {
     SigmaAzimuthDeg,
     /// `score`: the track score.
     Score,
+    /// `turn_rate_deg`: the aircraft IMM's CT-mode turn rate (°/s).
+    TurnRateDeg,
+    /// `sigma_turn_rate_deg`: its standard deviation (°/s).
+    SigmaTurnRateDeg,
 }
 
 impl Column {
@@ -56,8 +60,13 @@ impl Column {
             Self::SigmaRange => "sigma_range".into(),
             Self::SigmaAzimuthDeg => "sigma_azimuth_deg".into(),
             Self::Score => "score".into(),
+            Self::TurnRateDeg => "turn_rate_deg".into(),
+            Self::SigmaTurnRateDeg => "sigma_turn_rate_deg".into(),
         }
     }
+
+    /// The aircraft IMM's turn-rate columns, after its mode probabilities.
+    pub(super) const TURN_RATE: [Self; 2] = [Self::TurnRateDeg, Self::SigmaTurnRateDeg];
 
     /// The single-target columns: `t, track`, the CV state of `axes` axes (2 or 3), its
     /// variances, then `modes` mode probabilities and, with `noise`, the noise estimate.
@@ -111,6 +120,7 @@ pub(super) struct Point<'a> {
     modes: Option<&'a [f64]>,
     noise: Option<NoiseVariances>,
     score: f64,
+    turn_rate: Option<(f64, f64)>,
 }
 
 impl<'a> Point<'a> {
@@ -128,6 +138,7 @@ impl<'a> Point<'a> {
             modes: None,
             noise: None,
             score: 0.0,
+            turn_rate: None,
         }
     }
 
@@ -156,6 +167,11 @@ impl<'a> Point<'a> {
     /// With the multi-IMM's noise estimate (`None`: empty cells).
     pub(super) fn noise(self, noise: Option<NoiseVariances>) -> Self {
         Self { noise, ..self }
+    }
+
+    /// With the aircraft IMM's turn rate and its σ, rad/s (`None`: empty cells).
+    pub(super) fn turn_rate(self, turn_rate: Option<(f64, f64)>) -> Self {
+        Self { turn_rate, ..self }
     }
 
     /// With a track score.
@@ -212,6 +228,8 @@ impl TrackRows {
                     cell(out, p.noise.map(|v| v.azimuth().sqrt().to_degrees()))
                 }
                 Column::Score => write!(out, "{}", p.score),
+                Column::TurnRateDeg => cell(out, p.turn_rate.map(|w| w.0.to_degrees())),
+                Column::SigmaTurnRateDeg => cell(out, p.turn_rate.map(|w| w.1.to_degrees())),
             };
         }
         out.push('\n');

@@ -63,6 +63,9 @@ pub(super) enum EstimatorKind {
     Imm,
     /// The multi-IMM measurement-noise estimator of seed 000 eqs (8)–(14) around that IMM.
     MultiImm,
+    /// The aircraft IMM (`argus_imm::AircraftImm`): two CV modes and a coordinated turn
+    /// with the turn rate as a state, EKFs on one radar's polar plots.
+    AircraftImm,
 }
 
 impl EstimatorKind {
@@ -73,6 +76,7 @@ impl EstimatorKind {
             Self::Ekf => "ekf",
             Self::Imm => "imm",
             Self::MultiImm => "multi-imm",
+            Self::AircraftImm => "aircraft-imm",
         }
     }
 }
@@ -100,6 +104,22 @@ pub(super) struct EstimatorTable {
     pub(super) p: Option<Spanned<f64>>,
     pub(super) clip: Option<Spanned<f64>>,
     pub(super) per_axis: Option<Spanned<bool>>,
+    pub(super) cv_sigma_a: Option<Spanned<Vec<f64>>>,
+    pub(super) ct_sigma_a: Option<Spanned<f64>>,
+    pub(super) ct_sigma_omega_deg: Option<Spanned<f64>>,
+    pub(super) start_sigma_omega_deg: Option<Spanned<f64>>,
+    pub(super) mixing: Option<Spanned<Mixing>>,
+    pub(super) mixing_sigma_omega_deg: Option<Spanned<f64>>,
+}
+
+/// The aircraft IMM's mixing rule for the turn rate (`argus_imm::Augmentation`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub(super) enum Mixing {
+    /// Granström et al.'s unbiased rule.
+    Unbiased,
+    /// `ω = 0` with the standard deviation `mixing_sigma_omega_deg`.
+    Fixed,
 }
 
 /// One motion model of an IMM: `kind = "cv"` or `"ct"` (with `rate_deg`).
