@@ -370,7 +370,20 @@ impl Setup {
                 let mut t = String::from("t,track,status,x,vx,y,vy\n");
                 for h in &histories {
                     for r in h.rows() {
-                        t.push_str(&format!("{},{},{},{},{},{},{}\n", r.t, h.name(), if r.confirmed {"confirmed"} else {"tentative"}, r.x, r.vx, r.y, r.vy));
+                        t.push_str(&format!(
+                            "{},{},{},{},{},{},{}\n",
+                            r.t,
+                            h.name(),
+                            if r.confirmed {
+                                "confirmed"
+                            } else {
+                                "tentative"
+                            },
+                            r.x,
+                            r.vx,
+                            r.y,
+                            r.vy
+                        ));
                     }
                 }
                 std::fs::write(format!("{path}.{}.csv", named.name), t).ok();
@@ -503,6 +516,15 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
         Named {
             name: "jpda_imm",
             config: with(imm, jpda),
+        },
+        Named {
+            name: "gnn_aircraft",
+            config: with(
+                EstimatorConfig::Aircraft {
+                    tuning: argus_imm::AircraftTuning::default(),
+                },
+                AssociationConfig::Gnn,
+            ),
         },
     ];
     for n in &out {
