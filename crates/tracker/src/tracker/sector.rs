@@ -306,8 +306,7 @@ impl Tracker {
         self.imm_predicted.clear();
         self.polar_mp.clear();
         for (track, role) in self.tracks.iter_mut().zip(&self.roles) {
-            self.saved
-                .push(mutates.then(|| track.state.clone()));
+            self.saved.push(mutates.then(|| track.state.clone()));
             let Role::Look { time, .. } = *role else {
                 self.predicted.push(None);
                 if is_imm {
