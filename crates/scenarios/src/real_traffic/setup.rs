@@ -111,7 +111,7 @@ pub(super) fn params() -> Vec<ParamSpec> {
             0.999,
             "IMM probability of staying in a mode per revolution",
         ),
-        ParamSpec::new("confirm_m", 3.0, 1.0, 20.0, "confirmation: M hits ..."),
+        ParamSpec::new("confirm_m", 2.0, 1.0, 20.0, "confirmation: M hits ..."),
         ParamSpec::new(
             "confirm_n",
             4.0,
@@ -121,7 +121,7 @@ pub(super) fn params() -> Vec<ParamSpec> {
         ),
         ParamSpec::new(
             "max_misses",
-            3.0,
+            4.0,
             1.0,
             100.0,
             "a confirmed track is deleted after this many consecutive misses",
@@ -135,10 +135,38 @@ pub(super) fn params() -> Vec<ParamSpec> {
         ),
         ParamSpec::new(
             "init_revolutions",
-            2.4,
+            1.4,
             1.01,
             10.0,
             "two-point initiation: an unused plot waits this many revolutions for its pair",
+        ),
+        ParamSpec::new(
+            "ac_cv_sigma_low",
+            0.3,
+            0.0,
+            100.0,
+            "aircraft IMM: quiet CV mode's σ_a (m/s²)",
+        ),
+        ParamSpec::new(
+            "ac_cv_sigma_high",
+            2.0,
+            0.0,
+            100.0,
+            "aircraft IMM: manoeuvre CV mode's σ_a (m/s²)",
+        ),
+        ParamSpec::new(
+            "ac_ct_sigma_a",
+            0.5,
+            0.0,
+            100.0,
+            "aircraft IMM: CT mode's σ_a (m/s²)",
+        ),
+        ParamSpec::new(
+            "ac_ct_sigma_omega_deg",
+            0.2,
+            1e-6,
+            10.0,
+            "aircraft IMM: CT mode's turn-rate random walk σ_ω (deg/s²)",
         ),
         ParamSpec::new(
             "score",
@@ -521,7 +549,7 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
             name: "gnn_aircraft",
             config: with(
                 EstimatorConfig::Aircraft {
-                    tuning: argus_imm::AircraftTuning::default(),
+                    tuning: aircraft_tuning(p)?,
                 },
                 AssociationConfig::Gnn,
             ),
@@ -612,4 +640,15 @@ fn covered_truth(
         }
     }
     Ok(out)
+}
+
+/// The aircraft IMM's tuning: [`argus_imm::AircraftTuning::default`] with the scenario's
+/// noise parameters.
+fn aircraft_tuning(p: &Params) -> Result<argus_imm::AircraftTuning<2, 3>, ScenarioError> {
+    Ok(argus_imm::AircraftTuning {
+        cv_sigma_a: [p.get("ac_cv_sigma_low")?, p.get("ac_cv_sigma_high")?],
+        ct_sigma_a: p.get("ac_ct_sigma_a")?,
+        ct_sigma_omega: p.get("ac_ct_sigma_omega_deg")?.to_radians(),
+        ..argus_imm::AircraftTuning::default()
+    })
 }
