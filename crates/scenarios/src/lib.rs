@@ -60,6 +60,10 @@ pub mod experiments {
     }
     pub use crate::maneuver_1d::experiment as maneuver_1d;
     pub use crate::rbs_landing::experiment as rbs_landing;
+    /// The real-traffic scenario's tracker configurations, by name.
+    pub mod real_traffic {
+        pub use crate::real_traffic::trackers;
+    }
 }
 
 pub use api::{RunOutput, ScenarioInfo, list, merge, run};

@@ -28,6 +28,22 @@ mod truth;
 
 pub(crate) use setup::Setup;
 
+/// The tracker configurations `argus run real-traffic` compares, by name (`gnn_kf`, …,
+/// `gnn_aircraft`), for the parameters given.
+///
+/// # Errors
+/// [`ScenarioError::Param`] for a bad parameter, [`ScenarioError::Tracker`] for a
+/// configuration the tracker refuses.
+pub fn trackers(
+    params: &Params,
+) -> Result<Vec<(&'static str, argus_tracker::TrackerConfig)>, ScenarioError> {
+    Ok(Setup::new(params)?
+        .trackers
+        .into_iter()
+        .map(|n| (n.name, n.config))
+        .collect())
+}
+
 use argus_sim::{ChaCha8Rng, SensorSpec, Truth};
 
 use crate::campaign::{Campaign, Splittable, in_process};
