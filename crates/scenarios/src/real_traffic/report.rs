@@ -1,7 +1,7 @@
 //! The `real-traffic` report: each configuration's score against the ADS-B truth
 //! (means over the runs), completeness and GOSPA over time, and the map.
 
-use super::setup::{ConfigScore, RealRun, Setup};
+use super::setup::{ConfigScore, EXTENSION, RealRun, Setup};
 use crate::error::ScenarioError;
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
 
@@ -203,7 +203,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             "gospa_missed",
             "mean GOSPA missed part",
             Some(val(&|c| c.gospa_missed_mean)),
-            "m",
+            "m²",
             "",
         );
         push(
@@ -211,8 +211,16 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             "gospa_false",
             "mean GOSPA false part",
             Some(val(&|c| c.gospa_false_mean)),
-            "m",
+            "m²",
             "",
+        );
+        push(
+            &mut rows,
+            "spurious_fraction_truth_extended",
+            &format!("spurious time, each truth extended {EXTENSION} s past its end"),
+            opt(&|c| c.spurious_fraction_extended),
+            "-",
+            "diagnostic",
         );
         columns.push(format!("{key}_completeness"));
         columns.push(format!("{key}_gospa"));

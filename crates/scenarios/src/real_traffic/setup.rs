@@ -22,6 +22,11 @@ const RADAR: u32 = 1;
 /// 002°32′52″ E, 392 ft).
 const CDG: (f64, f64, f64) = (49.009_722, 2.547_778, 119.0);
 
+/// The diagnostic score extends every truth path by dead reckoning for this long (s): a
+/// track coasting after its aircraft's last ADS-B sample (the sample's area ends ~110 km
+/// from CDG, inside the radar's 150 km) is then not counted as spurious.
+pub(crate) const EXTENSION: f64 = 25.0;
+
 /// Track positions on the map are kept every this many seconds.
 const MAP_STEP: f64 = 20.0;
 
@@ -230,6 +235,8 @@ pub(crate) struct Setup {
     pub(crate) scorer: Scorer,
     /// The truth inside the coverage, as the scorer takes it.
     pub(crate) truth: Vec<TruthPath>,
+    /// The same, each path extended [`EXTENSION`] s past its end by dead reckoning.
+    pub(crate) truth_extended: Vec<TruthPath>,
     /// The cleaning's counts (records, aircraft, drops per rule).
     pub(crate) cleaning: argus_adsb::CleaningReport,
 }
@@ -242,6 +249,8 @@ pub(crate) struct ConfigScore {
     pub(crate) breaks: usize,
     pub(crate) id_swaps: usize,
     pub(crate) spurious_fraction: Option<f64>,
+    /// The spurious fraction against the truth extended past each path's end.
+    pub(crate) spurious_fraction_extended: Option<f64>,
     pub(crate) false_tracks_per_step: f64,
     pub(crate) position_rmse: Option<f64>,
     pub(crate) velocity_rmse: Option<f64>,
@@ -326,6 +335,7 @@ impl Setup {
             ..ScoreConfig::default()
         })?;
         let truth = covered_truth(&paths, &radar, duration)?;
+        let truth_extended = extended(&truth)?;
         if truth.is_empty() {
             return Err(ScenarioError::Degenerate {
                 scenario: "real-traffic",
@@ -340,6 +350,7 @@ impl Setup {
             trackers,
             scorer,
             truth,
+            truth_extended,
             cleaning,
         })
     }
@@ -428,6 +439,7 @@ impl Setup {
                 }
             }
             let score = self.scorer.score(&histories, &self.truth)?;
+            let extended = self.scorer.score(&histories, &self.truth_extended)?;
             let s = &score.summary;
             configs.push(ConfigScore {
                 completeness: s.completeness,
@@ -435,6 +447,7 @@ impl Setup {
                 breaks: s.breaks,
                 id_swaps: s.id_swaps,
                 spurious_fraction: s.spurious_fraction,
+                spurious_fraction_extended: extended.summary.spurious_fraction,
                 false_tracks_per_step: s.false_tracks_per_step,
                 position_rmse: s.position_rmse,
                 velocity_rmse: s.velocity_rmse,
@@ -651,4 +664,28 @@ fn aircraft_tuning(p: &Params) -> Result<argus_imm::AircraftTuning<2, 3>, Scenar
         ct_sigma_omega: p.get("ac_ct_sigma_omega_deg")?.to_radians(),
         ..argus_imm::AircraftTuning::default()
     })
+}
+
+/// Each path followed for [`EXTENSION`] s past its last sample at its last velocity, a
+/// sample every 5 s (the scorer interpolates only across gaps of at most 10 s).
+fn extended(truth: &[TruthPath]) -> Result<Vec<TruthPath>, ScenarioError> {
+    truth
+        .iter()
+        .map(|p| {
+            let mut samples = p.samples().to_vec();
+            if let Some(&last) = p.samples().last() {
+                let mut dt = 5.0;
+                while dt <= EXTENSION {
+                    samples.push(TruthSample {
+                        t: last.t + dt,
+                        x: last.x + last.vx * dt,
+                        y: last.y + last.vy * dt,
+                        ..last
+                    });
+                    dt += 5.0;
+                }
+            }
+            Ok(TruthPath::new(p.name(), samples)?)
+        })
+        .collect()
 }
