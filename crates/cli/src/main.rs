@@ -284,6 +284,32 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         } => {
             let sc = find(&scenario)?;
             let params = Params::from_settings(&sc.params(), &set)?;
+            let truth_path = truth.unwrap_or_else(|| out.with_extension("truth.csv"));
+            if let Some(sim) = sc.simulated(&params, seed, run) {
+                let sim = sim?;
+                let (text, skipped) = plotfile::write_text(&sim.plots);
+                if skipped > 0 {
+                    return Err(CliError::Usage(format!(
+                        "{skipped} plots of another layout cannot share one file"
+                    )));
+                }
+                output::write_atomic(&out, text.as_bytes())?;
+                let mut t_text = String::from("t,target,x,vx,y,vy\n");
+                for r in &sim.truth {
+                    t_text.push_str(&format!(
+                        "{},{},{},{},{},{}\n",
+                        r.t, r.target, r.x, r.vx, r.y, r.vy
+                    ));
+                }
+                output::write_atomic(&truth_path, t_text.as_bytes())?;
+                println!(
+                    "wrote {} ({} plots) and {}",
+                    out.display(),
+                    sim.plots.len(),
+                    truth_path.display()
+                );
+                return Ok(());
+            }
             let (scene, sensors) = sc.scene(&params)?;
             let plots =
                 argus_sim::generate_plots(&scene, &sensors, &mut argus_sim::run_rng(seed, run))?;
@@ -314,7 +340,6 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     }
                 }
             }
-            let truth_path = truth.unwrap_or_else(|| out.with_extension("truth.csv"));
             output::write_atomic(&truth_path, t_text.as_bytes())?;
             println!(
                 "wrote {} ({} plots) and {}",

@@ -9,6 +9,7 @@ use crate::assign::Edge;
 use crate::estimator::Estimator;
 use crate::grid::Grid;
 use crate::plot::{ScanPoint, SensorModel};
+use crate::state::TrackState;
 use crate::{
     AssociationConfig, DeletionReason, Plot, SensorId, Track, TrackId, TrackStatus, TrackerConfig,
     TrackerError,
@@ -112,6 +113,10 @@ pub struct Tracker {
     roles: Vec<Role>,
     /// An IMM track's prediction to its plot's time.
     modes: Vec<Option<ImmPrediction<4, 2>>>,
+    /// A sector's looked-at tracks' states before their look prediction, for the
+    /// estimators whose state becomes its prediction (aircraft IMM, multi-IMM): restored
+    /// before predicting again to the plot's own time, or when the track is carried.
+    saved: Vec<Option<TrackState>>,
 }
 
 impl Tracker {
@@ -156,6 +161,7 @@ impl Tracker {
             point_times: Vec::new(),
             roles: Vec::new(),
             modes: Vec::new(),
+            saved: Vec::new(),
         })
     }
 

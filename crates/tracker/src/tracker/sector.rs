@@ -304,12 +304,19 @@ impl Tracker {
             && polar_sensor.is_some()
             && self.points.iter().any(|p| p.polar.is_some());
         let is_imm = matches!(self.est, Estimator::Imm(_));
+        // These estimators' states become their prediction: keep the state before it.
+        let mutates = matches!(
+            self.est,
+            Estimator::Aircraft { .. } | Estimator::MultiImm(_)
+        );
+        self.saved.clear();
 
         // Predict each looked-at track to its crossing time (never backwards).
         self.predicted.clear();
         self.imm_predicted.clear();
         self.polar_mp.clear();
         for (track, role) in self.tracks.iter_mut().zip(&self.roles) {
+            self.saved.push(mutates.then(|| track.state.clone()));
             let Role::Look { time, .. } = *role else {
                 self.predicted.push(None);
                 if is_imm {
@@ -368,11 +375,19 @@ impl Tracker {
             let hit = self.assigned[k];
             let weights = &self.jpda[k];
             if hit.is_none() && weights.is_empty() && !closes {
+                // Carried: the state is as it was before the look prediction.
+                if let Some(saved) = self.saved[k].take() {
+                    track.state = saved;
+                }
                 continue;
             }
             let (posterior, at) = match hit {
                 Some(j) if weights.is_empty() => {
                     let tj = self.point_times[j];
+                    // Predict from the state before the look prediction.
+                    if let Some(saved) = self.saved[k].take() {
+                        track.state = saved;
+                    }
                     self.modes.clear();
                     let pj = self.est.predict(
                         &mut track.state,
