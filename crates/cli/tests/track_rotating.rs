@@ -201,7 +201,7 @@ fn the_real_traffic_example_tracks_every_aircraft_on_a_rotating_radar() {
     assert_eq!(run.code, Some(0), "{}", run.stderr);
     assert!(
         run.csv
-            .starts_with("t,sensor,track,status,reason,x,vx,y,vy,sigma_x,sigma_y,mu_1,mu_2\n"),
+            .starts_with("t,sensor,track,status,reason,x,vx,y,vy,sigma_x,sigma_y,mu_1,mu_2,mu_3,turn_rate_deg,sigma_turn_rate_deg\n"),
         "today's columns"
     );
     let rows = parse_rows(&run.csv);
@@ -234,8 +234,8 @@ fn the_real_traffic_example_tracks_every_aircraft_on_a_rotating_radar() {
         // Confirmed within 12 revolutions (3 hits of 4 after a first pair at P_D 0.9:
         // not within 12 with probability < 1e-4).
         assert!(*t < 12.0 * P, "aircraft {k} confirmed at {t}");
-        // One track each for the whole 10 min: 5 misses in a row at P_D 0.9 (1e-5 per
-        // revolution) would be needed to break it.
+        // One track each for the whole 10 min: 4 misses in a row at P_D 0.9 (1e-4 per
+        // revolution, 0.05 over the 480 aircraft-revolutions here) would break it.
         assert_eq!(tracks_of[&k].len(), 1, "aircraft {k}: {:?}", tracks_of[&k]);
     }
     // One row per track per revolution (updated or missed), at its aircraft's beam

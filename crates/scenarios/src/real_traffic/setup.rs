@@ -116,7 +116,7 @@ pub(super) fn params() -> Vec<ParamSpec> {
             0.999,
             "IMM probability of staying in a mode per revolution",
         ),
-        ParamSpec::new("confirm_m", 2.0, 1.0, 20.0, "confirmation: M hits ..."),
+        ParamSpec::new("confirm_m", 3.0, 1.0, 20.0, "confirmation: M hits ..."),
         ParamSpec::new(
             "confirm_n",
             4.0,
@@ -490,7 +490,8 @@ impl Setup {
     }
 }
 
-/// The tracker configurations: GNN and JPDA, each with a KF and the two-CV IMM per track.
+/// The tracker configurations: GNN and JPDA, each with a KF, the two-CV IMM and the
+/// aircraft IMM per track.
 fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
     let direction = match radar.rotation {
         Rotation::Clockwise => RotationDirection::Clockwise,
@@ -567,6 +568,15 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
                 AssociationConfig::Gnn,
             ),
         },
+        Named {
+            name: "jpda_aircraft",
+            config: with(
+                EstimatorConfig::Aircraft {
+                    tuning: aircraft_tuning(p)?,
+                },
+                jpda,
+            ),
+        },
     ];
     for n in &out {
         n.config.validate()?;
@@ -586,11 +596,11 @@ pub(crate) fn track(
         std::collections::BTreeMap::new();
     let mut record = |tracker: &mut Tracker| {
         for tr in tracker.tracks().iter().chain(tracker.deleted()) {
-            if tr.status() == TrackStatus::Deleted {
-                continue;
-            }
+            let deleted = tr.status() == TrackStatus::Deleted;
             let r = rows.entry(tr.id().0).or_default();
-            if r.last().is_some_and(|l| l.t >= tr.time()) {
+            // A deleted track's last row (not confirmed: the track is gone from then on,
+            // as the tracks CSV's `deleted` row says).
+            if !deleted && r.last().is_some_and(|l| l.t >= tr.time()) {
                 continue;
             }
             let x = tr.estimate().mean();
