@@ -71,8 +71,7 @@ pub fn run(
     match scenario.splittable() {
         Some(sp) => {
             let records = sp.records(&ctx)?;
-            let texts = in_process(records.clone(), &ctx.runs);
-            let report = sp.reduce_records(&ctx.params, &texts)?;
+            let report = sp.reduce_records(&ctx.params, &mut in_process(&records, &ctx.runs))?;
             Ok(RunOutput {
                 report,
                 records: Some(records),
@@ -85,8 +84,9 @@ pub fn run(
     }
 }
 
-/// The report of the records of split runs (in run order, as `RunOutput::records` gave
-/// them, with where each was read from).
+/// The report of the records of split runs, streamed in run order (as
+/// `RunOutput::records` gave them, with where each was read from): the records are
+/// parsed one at a time.
 ///
 /// # Errors
 /// [`ScenarioError::NotSplittable`], [`ScenarioError::Record`] for a record that does not
@@ -94,7 +94,7 @@ pub fn run(
 pub fn merge(
     scenario: &dyn Scenario,
     params: &Params,
-    records: &[RecordText],
+    records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
 ) -> Result<Report, ScenarioError> {
     let sp = scenario
         .splittable()

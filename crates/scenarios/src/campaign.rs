@@ -55,6 +55,22 @@ pub trait Campaign: Sync {
     /// # Errors
     /// Whatever the metrics report (e.g. every run lost).
     fn reduce(&self, setup: &Self::Setup, runs: &[Self::Run]) -> Result<Report, ScenarioError>;
+
+    /// The report of the runs as a stream, in run order: what [`Splittable::reduce_records`]
+    /// calls. The default collects the parsed runs and calls [`Campaign::reduce`] (memory
+    /// grows with the parsed records, never with the files' text); a scenario whose
+    /// reduction is a fold over the runs overrides it to keep only its running sums.
+    ///
+    /// # Errors
+    /// The stream's first error (a record that does not parse), then the reduce step's.
+    fn reduce_stream(
+        &self,
+        setup: &Self::Setup,
+        runs: &mut dyn Iterator<Item = Result<Self::Run, ScenarioError>>,
+    ) -> Result<Report, ScenarioError> {
+        let runs = runs.collect::<Result<Vec<_>, _>>()?;
+        self.reduce(setup, &runs)
+    }
 }
 
 /// The object-safe face of a [`Campaign`], used by the command.
@@ -66,15 +82,16 @@ pub trait Splittable: Sync {
     /// The first failing run's error (in run order).
     fn records(&self, ctx: &RunContext<'_>) -> Result<Vec<String>, ScenarioError>;
 
-    /// Parses the records (JSON text, in run order) and reduces them.
+    /// Parses the records (JSON text, in run order, one at a time as the stream yields
+    /// them) and reduces them.
     ///
     /// # Errors
-    /// [`ScenarioError::Record`] for a record that does not parse (with its file and
-    /// line), then the reduce step's error.
+    /// The stream's first error, [`ScenarioError::Record`] for a record that does not
+    /// parse (with its file and line), then the reduce step's error.
     fn reduce_records(
         &self,
         params: &Params,
-        records: &[RecordText],
+        records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
     ) -> Result<Report, ScenarioError>;
 }
 
@@ -112,32 +129,43 @@ impl<C: Campaign> Splittable for C {
     fn reduce_records(
         &self,
         params: &Params,
-        records: &[RecordText],
+        records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
     ) -> Result<Report, ScenarioError> {
         let setup = self.setup(params)?;
-        let runs = records
-            .iter()
-            .map(|r| {
-                serde_json::from_str::<C::Run>(&r.json).map_err(|e| ScenarioError::Record {
-                    file: r.file.clone(),
-                    line: r.line,
-                    message: e.to_string(),
-                })
+        let mut runs = records.map(|r| {
+            let r = r?;
+            serde_json::from_str::<C::Run>(&r.json).map_err(|e| ScenarioError::Record {
+                file: r.file.clone(),
+                line: r.line,
+                message: e.to_string(),
             })
-            .collect::<Result<Vec<_>, _>>()?;
-        self.reduce(&setup, &runs)
+        });
+        self.reduce_stream(&setup, &mut runs)
     }
 }
 
-/// In-process records as [`RecordText`] (no file).
-pub fn in_process(records: Vec<String>, runs: &Range<u64>) -> Vec<RecordText> {
-    records
-        .into_iter()
-        .zip(runs.clone())
-        .map(|(json, run)| RecordText {
-            json,
+/// In-process records as a stream of [`RecordText`] (no file), for
+/// [`Splittable::reduce_records`].
+pub fn in_process<'a>(
+    records: &'a [String],
+    runs: &Range<u64>,
+) -> impl Iterator<Item = Result<RecordText, ScenarioError>> + 'a {
+    records.iter().zip(runs.clone()).map(|(json, run)| {
+        Ok(RecordText {
+            json: json.clone(),
             file: PathBuf::from(format!("<run {run}>")),
             line: 1,
         })
-        .collect()
+    })
+}
+
+/// The whole campaign of `ctx` through its records: computes them and reduces them as
+/// read back from their JSON text, exactly as a merge of split runs would. What a
+/// splittable scenario's [`Scenario::run`](crate::scenario::Scenario::run) returns.
+///
+/// # Errors
+/// As [`Splittable::records`], then [`Splittable::reduce_records`].
+pub fn run_whole(sp: &dyn Splittable, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
+    let records = sp.records(ctx)?;
+    sp.reduce_records(&ctx.params, &mut in_process(&records, &ctx.runs))
 }

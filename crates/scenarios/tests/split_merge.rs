@@ -1,0 +1,65 @@
+//! Every scenario's campaign split by run index and merged gives exactly the report of
+//! one whole run (issue 22): the table, the series, the figures and the notes, compared
+//! bit for bit through their `Debug` text (which prints every f64 exactly, NaN included).
+//! Reduced run counts and short flights keep each case within a few seconds.
+
+use argus_scenarios::{NoProgress, Params, RecordText, find, in_process, merge, run};
+
+/// Runs `name` over `0..n` whole and in the shards `cuts` (`[0, a, b, n]`), merges the
+/// shards' records in run order and asserts the two reports are identical.
+fn split_equals_whole(name: &str, settings: &[&str], cuts: &[u64]) {
+    let sc = find(name).unwrap();
+    let settings: Vec<String> = settings.iter().map(|s| (*s).to_owned()).collect();
+    let params = Params::from_settings(&sc.params(), &settings).unwrap();
+    let n = *cuts.last().unwrap();
+    let whole = run(sc.as_ref(), 0..n, 5, params.clone(), &NoProgress).unwrap();
+    let mut records: Vec<String> = Vec::new();
+    for w in cuts.windows(2) {
+        let part = run(sc.as_ref(), w[0]..w[1], 5, params.clone(), &NoProgress).unwrap();
+        let recs = part
+            .records
+            .expect("a splittable scenario returns its records");
+        assert_eq!(recs.len() as u64, w[1] - w[0], "{name}: one record per run");
+        records.extend(recs);
+    }
+    // The shards' records are the whole run's, byte for byte (each run has its own
+    // generator) …
+    assert_eq!(Some(&records), whole.records.as_ref(), "{name}: records");
+    // … and the merge reduces them to the same report, exactly (tolerance: none).
+    let mut stream = in_process(&records, &(0..n));
+    let merged = merge(sc.as_ref(), &params, &mut stream).unwrap();
+    assert_eq!(
+        format!("{merged:?}"),
+        format!("{:?}", whole.report),
+        "{name}: merged report differs from the whole run's"
+    );
+    assert!(!merged.rows.is_empty(), "{name}: the report has rows");
+}
+
+#[test]
+fn a_record_that_does_not_parse_is_refused_with_its_place() {
+    let sc = find("gimpo").unwrap();
+    let params = Params::from_settings(&sc.params(), &[]).unwrap();
+    let bad = RecordText {
+        json: "{\"fixed_se\": 3}".into(),
+        file: "x/runs/0-1.jsonl".into(),
+        line: 2,
+    };
+    let e = merge(sc.as_ref(), &params, &mut std::iter::once(Ok(bad))).unwrap_err();
+    assert!(e.to_string().contains("x/runs/0-1.jsonl"), "{e}");
+}
+
+#[test]
+fn cv_polar_split_equals_whole() {
+    split_equals_whole("cv-polar", &["duration=40"], &[0, 3, 5, 8]);
+}
+
+#[test]
+fn surveillance_split_equals_whole() {
+    split_equals_whole("surveillance", &["duration=40", "targets=5"], &[0, 1, 3]);
+}
+
+#[test]
+fn gimpo_split_equals_whole() {
+    split_equals_whole("gimpo", &[], &[0, 1, 3]);
+}
