@@ -39,13 +39,17 @@ pub trait Campaign: Sync {
     /// Whatever building the scene or filters reports.
     fn setup(&self, params: &Params) -> Result<Self::Setup, ScenarioError>;
 
-    /// Run `run` with its own generator ([`argus_sim::run_rng`]`(seed, run)`).
+    /// Run `run` of the campaign with base seed `seed`, with its own generator
+    /// ([`argus_sim::run_rng`]`(seed, run)`). A scenario that draws from other streams
+    /// (one per configuration, say) derives them from `seed` and `run` alone, so that a
+    /// run's record never depends on which other runs are computed with it.
     ///
     /// # Errors
     /// Whatever the simulation or the filters report.
     fn one_run(
         &self,
         setup: &Self::Setup,
+        seed: u64,
         run: u64,
         rng: &mut ChaCha8Rng,
     ) -> Result<Self::Run, ScenarioError>;
@@ -114,7 +118,7 @@ impl<C: Campaign> Splittable for C {
             ctx.seed,
             ctx.runs.clone(),
             |run, rng| -> Result<String, ScenarioError> {
-                let r = self.one_run(&setup, run, rng)?;
+                let r = self.one_run(&setup, ctx.seed, run, rng)?;
                 serde_json::to_string(&r).map_err(|e| ScenarioError::Serialize {
                     run,
                     message: e.to_string(),

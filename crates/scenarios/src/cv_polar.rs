@@ -204,6 +204,7 @@ impl Campaign for CvPolar {
     fn one_run(
         &self,
         s: &Setup,
+        _seed: u64,
         _run: u64,
         rng: &mut argus_sim::ChaCha8Rng,
     ) -> Result<CvRun, ScenarioError> {

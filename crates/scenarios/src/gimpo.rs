@@ -242,6 +242,7 @@ impl Campaign for Gimpo {
     fn one_run(
         &self,
         s: &Setup,
+        _seed: u64,
         run: u64,
         rng: &mut argus_sim::ChaCha8Rng,
     ) -> Result<estimate::RunOut, ScenarioError> {

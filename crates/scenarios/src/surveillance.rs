@@ -199,7 +199,13 @@ impl Campaign for Surveillance {
         Setup::new(params)
     }
 
-    fn one_run(&self, s: &Setup, run: u64, rng: &mut ChaCha8Rng) -> Result<SurvRun, ScenarioError> {
+    fn one_run(
+        &self,
+        s: &Setup,
+        _seed: u64,
+        run: u64,
+        rng: &mut ChaCha8Rng,
+    ) -> Result<SurvRun, ScenarioError> {
         let truth = s.truth(run)?;
         let scans = s.plots(&truth, rng)?;
         let truth_xy = (0..s.scans)

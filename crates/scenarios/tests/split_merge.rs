@@ -63,3 +63,29 @@ fn surveillance_split_equals_whole() {
 fn gimpo_split_equals_whole() {
     split_equals_whole("gimpo", &[], &[0, 1, 3]);
 }
+
+#[test]
+fn launch_split_equals_whole() {
+    split_equals_whole("launch", &["period=2"], &[0, 2, 5]);
+}
+
+#[test]
+fn clutter_split_equals_whole() {
+    split_equals_whole("clutter", &["steps=20"], &[0, 2, 3, 5]);
+}
+
+#[test]
+fn rbs_landing_split_equals_whole() {
+    split_equals_whole("rbs-landing", &[], &[0, 1, 3]);
+}
+
+#[test]
+fn maneuver_1d_split_equals_whole() {
+    // Detection delays and their percentiles come from the runs' detection indices.
+    split_equals_whole("maneuver-1d", &[], &[0, 2, 3, 5]);
+}
+
+#[test]
+fn drag_bearing_split_equals_whole() {
+    split_equals_whole("drag-bearing", &[], &[0, 1, 3]);
+}
