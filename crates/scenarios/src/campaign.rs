@@ -1,15 +1,33 @@
 //! Splittable campaigns: a scenario that computes one serialisable record per run and
 //! reduces the records into its [`Report`] can be run in pieces (runs `A..B` on several
-//! machines) and merged, with the numbers of one whole run.
+//! machines, or the shards of a cluster job array) and merged, with the numbers of one
+//! whole run. Every registered scenario is splittable.
 //!
-//! A scenario opts in by implementing [`Campaign`] and returning `Some(self)` from
-//! [`Scenario::splittable`](crate::scenario::Scenario::splittable). The records are JSON
-//! text; the command stores them as `runs/<A>-<B>.jsonl` beside the report (format in
-//! `docs/FORMATS.md`) and reads them back for `argus merge`.
+//! # Adopting it in a new scenario
+//! 1. Split the campaign in three: what every run shares (built from the parameters
+//!    alone: scene, filters, configurations) → [`Campaign::Setup`]; one run →
+//!    [`Campaign::one_run`], returning a record ([`Campaign::Run`], `Serialize +
+//!    Deserialize`) that holds **everything the reduce step reads of that run** — per-step
+//!    squared errors for RMS curves, detection indices for delays and their percentiles,
+//!    the trajectory when run 0 feeds a figure; and [`Campaign::reduce`] (or the streaming
+//!    [`Campaign::reduce_stream`]), the report from the records in run order.
+//! 2. A run draws only from `run_rng(seed, run)` (the `rng` given) or from streams derived
+//!    from `seed` and `run` alone, never from state shared between runs, so that a run's
+//!    record does not depend on which other runs are computed with it.
+//! 3. In `impl Scenario`: `fn run(&self, ctx) { run_whole(self, ctx) }` and
+//!    `fn splittable(&self) -> Option<&dyn Splittable> { Some(self) }`.
+//! 4. Add a case to `tests/split_merge.rs` (2–3 shards merged == the whole run, exactly).
 //!
-//! Even a whole campaign is reduced from the records as read back from their JSON
-//! text, so a report from one whole run and one from merged pieces of the same runs
-//! come from the same bytes (serde_json's `float_roundtrip` makes the text exact).
+//! Types without serde (nalgebra vectors) go into the record as arrays (see
+//! `drag_bearing::DragRecord`). JSON has no NaN: use `Option<f64>` for a missing value
+//! (a NaN would be written as `null` and refused when read back).
+//!
+//! The records are JSON text; the command stores them as `runs/<A>-<B>.jsonl` beside the
+//! report (format in `docs/FORMATS.md`) and streams them back, one at a time, for
+//! `argus merge`. Even a whole campaign is reduced from the records as read back from
+//! their JSON text, in run order, so a report from one whole run and one from merged
+//! pieces of the same runs come from the same bytes through the same floating-point
+//! operations (serde_json's `float_roundtrip` makes the text exact).
 
 use std::ops::Range;
 use std::path::PathBuf;
