@@ -1,6 +1,9 @@
 //! Campaigns split into shards (`argus run --shards K --shard i`), their merge's checks of
 //! the campaign as a whole, and the job files of `argus campaign plan` (issue 22).
 
+// Test helpers outside #[test] functions may unwrap: a failure is a test failure.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use std::path::Path;
 
 mod common;
@@ -274,11 +277,12 @@ fn plan_writes_slurm_and_kubernetes_jobs() {
     }
     // Where a YAML parser is at hand (Python's), the manifests must load and hold the fields.
     let py = "import sys, yaml\nj = yaml.safe_load(open(sys.argv[1]))\ns = j['spec']\nassert j['kind'] == 'Job' and s['completionMode'] == 'Indexed' and s['completions'] == 4, s\nc = s['template']['spec']['containers'][0]\nassert 'JOB_COMPLETION_INDEX' in c['args'][0], c\nyaml.safe_load(open(sys.argv[2]))\n";
-    if let Ok(o) = std::process::Command::new("python3")
+    let have_yaml = std::process::Command::new("python3")
         .args(["-c", "import yaml"])
         .output()
+        .is_ok_and(|o| o.status.success());
     {
-        if o.status.success() {
+        if have_yaml {
             let st = std::process::Command::new("python3")
                 .args(["-c", py])
                 .arg(d.join("plan/k8s/shards-job.yaml"))

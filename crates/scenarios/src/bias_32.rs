@@ -190,7 +190,7 @@ fn single_report(
     elapsed: f64,
 ) -> Result<Report, ScenarioError> {
     let plots: usize = recs.iter().map(|r| r.plots).sum();
-    let s = Summary::from_runs(&recs, c.sensors.len())?;
+    let s = Summary::from_runs(recs, c.sensors.len())?;
     let end = s.times.len().saturating_sub(1);
     let at = |t: f64| s.index_at(t);
     let (comp, units) = (COMPONENTS, UNITS);

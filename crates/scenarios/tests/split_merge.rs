@@ -3,6 +3,9 @@
 //! bit for bit through their `Debug` text (which prints every f64 exactly, NaN included).
 //! Reduced run counts and short flights keep each case within a few seconds.
 
+// Test helpers outside #[test] functions may unwrap: a failure is a test failure.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
 use argus_scenarios::{NoProgress, Params, RecordText, Report, find, in_process, merge, run};
 
 /// `report` with its computing-time values zeroed: bias-32's cost per plot (rows
