@@ -331,7 +331,7 @@ fn single_report(
     rows.push(
         Row::new(
             "cost_per_plot",
-            "wall time per plot (all threads)",
+            "run time per plot (each run's wall time, summed over the runs)",
             elapsed / plots.max(1) as f64 * 1e6,
             "us",
         )

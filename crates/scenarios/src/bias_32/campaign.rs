@@ -122,7 +122,7 @@ fn sweep_report(s: &Setup, runs: &[Vec<CellRun>]) -> Result<Report, ScenarioErro
             rows.push(
                 Row::new(
                     format!("sweep_{tag}_cost_per_plot"),
-                    format!("computing time per plot, {what}"),
+                    format!("run time per plot (runs summed), {what}"),
                     cost,
                     "us",
                 )
@@ -166,7 +166,7 @@ fn sweep_report(s: &Setup, runs: &[Vec<CellRun>]) -> Result<Report, ScenarioErro
         figures: Vec::new(),
         notes: vec![
             "Sweep: one campaign per (sensors, targets); sensors at (10 km·s, 0) with offsets s/S s, targets on the 8-column grid continued upward (rows 10 km apart).".to_owned(),
-            "Computing time per plot includes the local filters, the pseudo-measurement update and EXX (exx=1): each run's own (one-thread) time, summed over the runs, per plot.".to_owned(),
+            "Run time per plot includes the local filters, the pseudo-measurement update and EXX (exx=1): each run's own wall time (one thread), summed over the runs, per plot (with one run per combination: its wall time).".to_owned(),
             "summary.json `params` holds the first value of each list; sweep.csv lists every combination (EXX columns NaN when exx=0).".to_owned(),
         ],
     })
