@@ -295,6 +295,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let report = argus_scenarios::merge(
                 sc.as_ref(),
                 &m.params,
+                m.runs.end - m.runs.start,
                 &mut campaign_scan::records(&m.files),
             )?;
             let header = runs_file::Header::new(sc.name(), m.seed, &m.runs, &m.params, None);

@@ -71,7 +71,9 @@ pub fn run(
     match scenario.splittable() {
         Some(sp) => {
             let records = sp.records(&ctx)?;
-            let report = sp.reduce_records(&ctx.params, &mut in_process(&records, &ctx.runs))?;
+            let count = ctx.runs.end - ctx.runs.start;
+            let report =
+                sp.reduce_records(&ctx.params, count, &mut in_process(&records, &ctx.runs))?;
             Ok(RunOutput {
                 report,
                 records: Some(records),
@@ -84,7 +86,7 @@ pub fn run(
     }
 }
 
-/// The report of the records of split runs, streamed in run order (as
+/// The report of the `count` records of split runs, streamed in run order (as
 /// `RunOutput::records` gave them, with where each was read from): the records are
 /// parsed one at a time.
 ///
@@ -94,6 +96,7 @@ pub fn run(
 pub fn merge(
     scenario: &dyn Scenario,
     params: &Params,
+    count: u64,
     records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
 ) -> Result<Report, ScenarioError> {
     let sp = scenario
@@ -101,5 +104,5 @@ pub fn merge(
         .ok_or_else(|| ScenarioError::NotSplittable {
             scenario: scenario.name(),
         })?;
-    sp.reduce_records(params, records)
+    sp.reduce_records(params, count, records)
 }

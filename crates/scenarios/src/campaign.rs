@@ -78,18 +78,21 @@ pub trait Campaign: Sync {
     /// Whatever the metrics report (e.g. every run lost).
     fn reduce(&self, setup: &Self::Setup, runs: &[Self::Run]) -> Result<Report, ScenarioError>;
 
-    /// The report of the runs as a stream, in run order: what [`Splittable::reduce_records`]
-    /// calls. The default collects the parsed runs and calls [`Campaign::reduce`] (memory
-    /// grows with the parsed records, never with the files' text); a scenario whose
-    /// reduction is a fold over the runs overrides it to keep only its running sums.
+    /// The report of the `count` runs of a stream, in run order: what
+    /// [`Splittable::reduce_records`] calls. The default collects the parsed runs and calls
+    /// [`Campaign::reduce`] (memory grows with the parsed records, never with the files'
+    /// text); a scenario whose reduction is a fold over the runs overrides it to keep only
+    /// its running sums (gimpo does).
     ///
     /// # Errors
     /// The stream's first error (a record that does not parse), then the reduce step's.
     fn reduce_stream(
         &self,
         setup: &Self::Setup,
+        count: u64,
         runs: &mut dyn Iterator<Item = Result<Self::Run, ScenarioError>>,
     ) -> Result<Report, ScenarioError> {
+        let _ = count;
         let runs = runs.collect::<Result<Vec<_>, _>>()?;
         self.reduce(setup, &runs)
     }
@@ -104,8 +107,8 @@ pub trait Splittable: Sync {
     /// The first failing run's error (in run order).
     fn records(&self, ctx: &RunContext<'_>) -> Result<Vec<String>, ScenarioError>;
 
-    /// Parses the records (JSON text, in run order, one at a time as the stream yields
-    /// them) and reduces them.
+    /// Parses the `count` records (JSON text, in run order, one at a time as the stream
+    /// yields them) and reduces them.
     ///
     /// # Errors
     /// The stream's first error, [`ScenarioError::Record`] for a record that does not
@@ -113,6 +116,7 @@ pub trait Splittable: Sync {
     fn reduce_records(
         &self,
         params: &Params,
+        count: u64,
         records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
     ) -> Result<Report, ScenarioError>;
 }
@@ -151,6 +155,7 @@ impl<C: Campaign> Splittable for C {
     fn reduce_records(
         &self,
         params: &Params,
+        count: u64,
         records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
     ) -> Result<Report, ScenarioError> {
         let setup = self.setup(params)?;
@@ -162,7 +167,7 @@ impl<C: Campaign> Splittable for C {
                 message: e.to_string(),
             })
         });
-        self.reduce_stream(&setup, &mut runs)
+        self.reduce_stream(&setup, count, &mut runs)
     }
 }
 
@@ -189,5 +194,9 @@ pub fn in_process<'a>(
 /// As [`Splittable::records`], then [`Splittable::reduce_records`].
 pub fn run_whole(sp: &dyn Splittable, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
     let records = sp.records(ctx)?;
-    sp.reduce_records(&ctx.params, &mut in_process(&records, &ctx.runs))
+    sp.reduce_records(
+        &ctx.params,
+        ctx.runs.end - ctx.runs.start,
+        &mut in_process(&records, &ctx.runs),
+    )
 }

@@ -12,6 +12,7 @@
 
 mod estimate;
 mod report;
+mod sums;
 
 use argus_core_math::Vector;
 use argus_sim::{
@@ -251,7 +252,28 @@ impl Campaign for Gimpo {
     }
 
     fn reduce(&self, s: &Setup, runs: &[estimate::RunOut]) -> Result<Report, ScenarioError> {
-        let stats = report::Stats::new(&s.times, runs, s.traj.end());
-        report::report(&s.params, s.est.clip, &stats)
+        self.reduce_stream(s, runs.len() as u64, &mut runs.iter().cloned().map(Ok))
+    }
+
+    /// One pass over the runs, keeping only [`sums::Sums`]: a merge of any number of runs
+    /// holds per-step sums and a few final ratios per run, not the runs' records.
+    fn reduce_stream(
+        &self,
+        s: &Setup,
+        count: u64,
+        runs: &mut dyn Iterator<Item = Result<estimate::RunOut, ScenarioError>>,
+    ) -> Result<Report, ScenarioError> {
+        let t_end = s.traj.end();
+        let first = s
+            .times
+            .iter()
+            .position(|t| *t >= report::WARMUP * t_end)
+            .unwrap_or(0);
+        let expected = usize::try_from(count).unwrap_or(usize::MAX);
+        let mut sums = sums::Sums::new(s.times.clone(), first, expected);
+        for r in runs {
+            sums.add(&r?);
+        }
+        report::report(&s.params, s.est.clip, &sums.finish()?)
     }
 }

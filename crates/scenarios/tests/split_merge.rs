@@ -51,7 +51,7 @@ fn split_equals_whole(name: &str, settings: &[&str], cuts: &[u64]) {
     }
     // … and the merge reduces them to the same report, exactly (tolerance: none).
     let mut stream = in_process(&records, &(0..n));
-    let merged = without_timing(merge(sc.as_ref(), &params, &mut stream).unwrap());
+    let merged = without_timing(merge(sc.as_ref(), &params, n, &mut stream).unwrap());
     assert_eq!(
         format!("{merged:?}"),
         format!("{:?}", without_timing(whole.report)),
@@ -69,7 +69,7 @@ fn a_record_that_does_not_parse_is_refused_with_its_place() {
         file: "x/runs/0-1.jsonl".into(),
         line: 2,
     };
-    let e = merge(sc.as_ref(), &params, &mut std::iter::once(Ok(bad))).unwrap_err();
+    let e = merge(sc.as_ref(), &params, 1, &mut std::iter::once(Ok(bad))).unwrap_err();
     assert!(e.to_string().contains("x/runs/0-1.jsonl"), "{e}");
 }
 
