@@ -82,6 +82,18 @@ pub(crate) enum CliError {
     /// A merged campaign is not whole (a shard or runs missing or given twice).
     #[error("{0}")]
     Merge(#[from] crate::merge_error::MergeError),
+    /// Smoothing a track failed (`argus track --smooth`): nothing is written.
+    #[error("smoothing track {track}: step {step} (t = {time} s): {message}")]
+    Smooth {
+        /// The track (1 for the single-target job).
+        track: u64,
+        /// The step (0 is the track's first estimate; rows of one time are one step).
+        step: usize,
+        /// The step's time (s).
+        time: f64,
+        /// What failed.
+        message: String,
+    },
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {

@@ -1,5 +1,7 @@
 //! Tracker configuration, validated once by [`crate::Tracker::new`].
 
+use argus_imm::{AircraftTuning, Augmentation, PROBABILITY_SUM_TOL};
+
 use crate::field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
 use crate::{SensorId, TrackerError};
 
@@ -148,8 +150,8 @@ pub enum AssociationConfig {
     /// (see the crate docs). Every plot in a confirmed track's gate is spent (no track is
     /// initiated from it). A track is updated with the moment-matched mixture of its
     /// per-plot Kalman (or EKF) updates and its prediction, weighted by the marginals.
-    /// With [`EstimatorConfig::ImmCv2`] this is IMM-JPDA (see the crate docs); not
-    /// available with [`EstimatorConfig::MultiImm`].
+    /// With [`EstimatorConfig::ImmCv2`] and [`EstimatorConfig::Aircraft`] this is
+    /// IMM-JPDA (see the crate docs); not available with [`EstimatorConfig::MultiImm`].
     Jpda {
         /// Detection probability `P_D` in (0, 1].
         p_detection: f64,
@@ -204,6 +206,21 @@ pub enum EstimatorConfig {
         /// Largest relative change of the reference per plot, in (0, 1), or `None`
         /// (the paper: 5 %).
         clip: Option<f64>,
+    },
+    /// The aircraft IMM ([`argus_imm::AircraftImm`], docs/aircraft-imm.md) per track: two
+    /// CV modes on `[x, vx, y, vy]` and a coordinated turn with the turn rate as a state
+    /// `[x, vx, y, vy, ω]`, mixed by Granström et al.'s rule, EKFs updated with the polar
+    /// plot itself in `(r, θ)`. A plot is gated when it is in some mode's `(r, θ)` gate
+    /// (GNN's cost: its smallest normalised distance over the modes); its likelihood, for
+    /// the score, is the mode mixture `Σⱼ μ̄ⱼ N(νⱼ; 0, Sⱼ)` divided by the Jacobian `r`
+    /// (per m², as the EKF's). A track starts from the two-point estimate of its
+    /// initiating plots ([`argus_imm::AircraftTuning::start_from_cv`]).
+    /// [`crate::TrackerConfig::sigma_a`] is not used. Every sensor must have polar noise
+    /// and every plot must be polar. With JPDA each mode is updated with its own PDA
+    /// mixture of its EKF updates, as the two-CV IMM's IMM-JPDA (see the crate docs).
+    Aircraft {
+        /// Its tuning (`AircraftTuning::default()` is the documented one).
+        tuning: AircraftTuning<2, 3>,
     },
 }
 
@@ -439,6 +456,17 @@ impl TrackerConfig {
                 }
                 Some((sigma_a_low, sigma_a_high, p_stay))
             }
+            EstimatorConfig::Aircraft { tuning } => {
+                validate_aircraft(&tuning)?;
+                if let Some(s) = self.sensors.iter().find(|s| s.polar_noise.is_none()) {
+                    return bad(
+                        ConfigField::Sensor(SensorField::PolarNoise),
+                        f64::from(s.id.0),
+                        "the aircraft IMM needs every sensor's polar noise",
+                    );
+                }
+                None
+            }
         };
         if let Some((sigma_a_low, sigma_a_high, p_stay)) = motion {
             for (field, v) in [
@@ -500,4 +528,65 @@ impl TrackerConfig {
         }
         Ok(())
     }
+}
+
+/// Checks the aircraft IMM's tuning field by field (what
+/// [`argus_imm::AircraftTuning::build`] checks, each with its own [`EstimatorField`]).
+fn validate_aircraft(t: &AircraftTuning<2, 3>) -> Result<(), TrackerError> {
+    let bad = |field, value: f64, reason| {
+        Err(TrackerError::InvalidConfig {
+            field: ConfigField::Estimator(field),
+            value,
+            reason,
+        })
+    };
+    let positive = t
+        .cv_sigma_a
+        .iter()
+        .map(|&v| (EstimatorField::CvSigmaA, v))
+        .chain([
+            (EstimatorField::CtSigmaA, t.ct_sigma_a),
+            (EstimatorField::CtSigmaOmega, t.ct_sigma_omega),
+            (EstimatorField::StartSigmaOmega, t.start_sigma_omega),
+        ]);
+    for (field, v) in positive {
+        if !(v.is_finite() && v > 0.0) {
+            return bad(field, v, "must be finite and positive");
+        }
+    }
+    for row in &t.markov {
+        if let Some(&v) = row
+            .iter()
+            .find(|v| !(v.is_finite() && (0.0..=1.0).contains(*v)))
+        {
+            return bad(EstimatorField::Markov, v, "entries must lie in [0, 1]");
+        }
+        let sum: f64 = row.iter().sum();
+        if (sum - 1.0).abs() > PROBABILITY_SUM_TOL {
+            return bad(EstimatorField::Markov, sum, "each row must sum to 1");
+        }
+    }
+    if let Some(&v) = t.start_mu.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
+        return bad(
+            EstimatorField::StartMu,
+            v,
+            "must be finite and non-negative",
+        );
+    }
+    let sum: f64 = t.start_mu.iter().sum();
+    if (sum - 1.0).abs() > PROBABILITY_SUM_TOL {
+        return bad(EstimatorField::StartMu, sum, "must sum to 1");
+    }
+    if t.augmentation.validate().is_err() {
+        let value = match t.augmentation {
+            Augmentation::Fixed { sigma } => sigma,
+            _ => f64::NAN,
+        };
+        return bad(
+            EstimatorField::Augmentation,
+            value,
+            "its turn-rate sigma must be finite and positive",
+        );
+    }
+    Ok(())
 }

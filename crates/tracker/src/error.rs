@@ -89,9 +89,9 @@ pub enum TrackerError {
         sensor: SensorId,
     },
     /// A Cartesian plot given to a tracker whose estimator needs polar plots (the
-    /// multi-IMM).
+    /// multi-IMM, the aircraft IMM).
     #[error(
-        "plot {index} at t = {time} s from sensor {sensor:?} is Cartesian; the multi-IMM needs polar plots"
+        "plot {index} at t = {time} s from sensor {sensor:?} is Cartesian; the {estimator} needs polar plots"
     )]
     NotPolar {
         /// Index of the plot in the slice given.
@@ -100,6 +100,8 @@ pub enum TrackerError {
         time: f64,
         /// Its sensor.
         sensor: SensorId,
+        /// The estimator that needs them (`"multi-IMM"`, `"aircraft IMM"`).
+        estimator: &'static str,
     },
     /// A plot is 3-D (spherical or a 3-D position); the tracker takes 2-D plots.
     #[error(

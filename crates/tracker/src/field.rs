@@ -92,6 +92,20 @@ pub enum EstimatorField {
     GridSpacing,
     /// `clip` of [`crate::EstimatorConfig::MultiImm`].
     Clip,
+    /// `cv_sigma_a` of [`crate::EstimatorConfig::Aircraft`]'s tuning.
+    CvSigmaA,
+    /// `ct_sigma_a` of the aircraft tuning.
+    CtSigmaA,
+    /// `ct_sigma_omega` of the aircraft tuning.
+    CtSigmaOmega,
+    /// `markov` of the aircraft tuning.
+    Markov,
+    /// `start_sigma_omega` of the aircraft tuning.
+    StartSigmaOmega,
+    /// `start_mu` of the aircraft tuning.
+    StartMu,
+    /// `augmentation` of the aircraft tuning (its `Fixed` σ).
+    Augmentation,
 }
 
 /// [`crate::AssociationConfig`] or one of its parameters.
@@ -146,6 +160,13 @@ impl ConfigField {
                 EstimatorField::PStay => "estimator.p_stay",
                 EstimatorField::GridSpacing => "estimator.grid_spacing",
                 EstimatorField::Clip => "estimator.clip",
+                EstimatorField::CvSigmaA => "estimator.tuning.cv_sigma_a",
+                EstimatorField::CtSigmaA => "estimator.tuning.ct_sigma_a",
+                EstimatorField::CtSigmaOmega => "estimator.tuning.ct_sigma_omega",
+                EstimatorField::Markov => "estimator.tuning.markov",
+                EstimatorField::StartSigmaOmega => "estimator.tuning.start_sigma_omega",
+                EstimatorField::StartMu => "estimator.tuning.start_mu",
+                EstimatorField::Augmentation => "estimator.tuning.augmentation",
             },
             Self::Association(f) => match f {
                 AssociationField::Kind => "association",

@@ -9,8 +9,10 @@
 //! `[x, vx, y, vy]`, chosen by [`TrackerConfig::estimator`]: a Kalman filter
 //! ([`argus_filters::Kf`] on [`argus_motion_models::Cv2D`]), an EKF updated with the
 //! polar plots themselves ([`argus_filters::Ekf`], [`argus_sensors::Polar2D`]), a two-mode
-//! CV IMM ([`argus_imm::Imm`]), or seed 000's multi-IMM measurement-noise estimator
-//! ([`argus_imm::MultiImm`], its `R` estimate on [`Track::noise_estimate`]).
+//! CV IMM ([`argus_imm::Imm`]), seed 000's multi-IMM measurement-noise estimator
+//! ([`argus_imm::MultiImm`], its `R` estimate on [`Track::noise_estimate`]), or the
+//! aircraft IMM ([`argus_imm::AircraftImm`]: two CV modes and a coordinated turn with the
+//! turn rate as a state, its estimate on [`Track::turn_rate`]).
 //!
 //! Polar plots are converted once per scan by the unbiased conversion
 //! ([`argus_sensors::convert_polar`], Mo Longbin et al. 1998) plus the sensor position:
@@ -20,7 +22,10 @@
 //! likelihoods are divided by the Jacobian `r` of the polar map so that they are per m²
 //! like the clutter density. The multi-IMM gates on the plot converted with the
 //! configured noise and updates each of its IMMs with the plot converted with that IMM's
-//! hypothesis.
+//! hypothesis. The aircraft IMM gates in `(r, θ)` per mode (a plot in any mode's gate,
+//! at its smallest normalised distance; likelihood `Σⱼ μ̄ⱼ N(νⱼ; 0, Sⱼ) / r`) and updates
+//! every mode with the polar plot itself; its tracks start from the initiation's
+//! two-point estimate with the CT mode's turn-rate prior.
 //!
 //! # One scan
 //! 1. Every live track is predicted to the scan time.
@@ -48,6 +53,8 @@
 //!    `μ_r = μ̄_r (β₀ + Σ_j β_j N_r,j / N_j)`, the mode likelihood summed over the plot
 //!    events (Blom & Bloem, IEEE Trans. AC 45(2), 2000; Bar-Shalom, Willett & Tian,
 //!    *Tracking and Data Fusion*, 2011). With identical modes it is JPDA with the KF.
+//!    The aircraft IMM ([`EstimatorConfig::Aircraft`]) does the same with its three
+//!    modes' polar EKF updates and the `(r, θ)` mixture likelihood per m².
 //!    The solver is the [`lsap`] crate: SciPy's `linear_sum_assignment` algorithm
 //!    (Crouse's shortest augmenting path form of Jonker–Volgenant) on `f64` costs and
 //!    rectangular matrices. `pathfinding::kuhn_munkres`, the best-known Rust solver,
@@ -75,7 +82,8 @@
 //! A plot with a non-finite value, a negative range or a covariance that is not symmetric
 //! positive definite cannot be built ([`Plot`]'s constructors refuse it). Plots out of
 //! time order, from a sensor not in the configuration, polar plots with a zero range or
-//! from a sensor without polar noise, 3-D plots, Cartesian plots for the multi-IMM, and
+//! from a sensor without polar noise, 3-D plots, Cartesian plots for the multi-IMM or the
+//! aircraft IMM, and
 //! bad configurations give a
 //! [`TrackerError`] that names the plot (index, time, sensor) or the field. All plots are checked before any track is touched, so
 //! a rejected call leaves the tracker unchanged. A track whose filter step fails
@@ -93,10 +101,11 @@
 //! `argus_sim::Ospa`, `Gospa` and `TrackStatistics`.
 //!
 //! # Not yet here
-//! Coordinated-turn modes in the per-track IMM; JPDA with the multi-IMM (refused by the
-//! configuration); the multi-IMM with Cartesian plots (refused per plot) and with one
-//! noise estimate per sensor (all sensors feeding a track share its estimate); 3-D
-//! (spherical) plots.
+//! JPDA with the multi-IMM (refused by the configuration); the
+//! multi-IMM and the aircraft IMM with Cartesian plots (refused per plot); the multi-IMM
+//! with one noise estimate per sensor (all sensors feeding a track share its estimate);
+//! 3-D (spherical) plots. (The two-mode IMM [`EstimatorConfig::ImmCv2`] has CV modes
+//! only; coordinated turns are the aircraft IMM's, [`EstimatorConfig::Aircraft`].)
 //!
 //! # Example
 //! ```
@@ -118,6 +127,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod aircraft;
 mod assign;
 mod config;
 mod error;
@@ -133,6 +143,9 @@ mod state;
 mod track;
 mod tracker;
 
+/// The aircraft IMM's tuning and mixing rule (from `argus-imm`), re-exported for
+/// [`EstimatorConfig::Aircraft`].
+pub use argus_imm::{AircraftTuning, Augmentation};
 /// The plot vocabulary the tracker takes (from `argus-sensors`), re-exported.
 pub use argus_sensors::{Plot, SensorId};
 pub use config::{
@@ -140,6 +153,6 @@ pub use config::{
 };
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
-pub use state::MULTI_IMM_HYPOTHESES;
+pub use state::{MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};

@@ -3,7 +3,7 @@
 use argus_core_math::Gaussian;
 use argus_imm::NoiseVariances;
 
-use crate::state::TrackState;
+use crate::state::{ModeProbabilities, TrackState};
 
 /// A track's id: numbered from 0 in order of initiation and never reused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -117,11 +117,20 @@ impl Track {
         self.last_hit
     }
 
-    /// The IMM mode probabilities (quiet, manoeuvre) when the estimator is an IMM or a
-    /// multi-IMM (for the latter `Σₘ νᵐ μⱼᵐ`).
+    /// The IMM mode probabilities when the estimator is an IMM (quiet, manoeuvre), a
+    /// multi-IMM (the same, `Σₘ νᵐ μⱼᵐ`) or the aircraft IMM (CV quiet, CV manoeuvre,
+    /// CT).
     #[must_use]
-    pub fn mode_probabilities(&self) -> Option<[f64; 2]> {
+    pub fn mode_probabilities(&self) -> Option<ModeProbabilities> {
         self.state.mode_probabilities()
+    }
+
+    /// The aircraft IMM's turn-rate estimate and its standard deviation (rad/s,
+    /// counter-clockwise positive): the CT mode's `ω̂` and `√P_ωω`, conditional on the
+    /// CT mode ([`crate::EstimatorConfig::Aircraft`] only).
+    #[must_use]
+    pub fn turn_rate(&self) -> Option<(f64, f64)> {
+        self.state.turn_rate()
     }
 
     /// The multi-IMM's current measurement-noise estimate `(σ_r², σ_θ²)` (its reference

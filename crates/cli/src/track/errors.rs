@@ -125,6 +125,32 @@ pub(super) fn config_error(
             EstimatorField::Clip => {
                 Place::Key("estimator.clip", est.clip.as_ref().map(Spanned::span))
             }
+            EstimatorField::CvSigmaA => Place::Key(
+                "estimator.cv_sigma_a",
+                est.cv_sigma_a.as_ref().map(Spanned::span),
+            ),
+            EstimatorField::CtSigmaA => Place::Key(
+                "estimator.ct_sigma_a",
+                est.ct_sigma_a.as_ref().map(Spanned::span),
+            ),
+            EstimatorField::CtSigmaOmega => Place::Key(
+                "estimator.ct_sigma_omega_deg",
+                est.ct_sigma_omega_deg.as_ref().map(Spanned::span),
+            ),
+            EstimatorField::Markov => {
+                Place::Key("estimator.markov", est.markov.as_ref().map(Spanned::span))
+            }
+            EstimatorField::StartSigmaOmega => Place::Key(
+                "estimator.start_sigma_omega_deg",
+                est.start_sigma_omega_deg.as_ref().map(Spanned::span),
+            ),
+            EstimatorField::StartMu => {
+                Place::Key("estimator.initial", est.initial.as_ref().map(Spanned::span))
+            }
+            EstimatorField::Augmentation => Place::Key(
+                "estimator.mixing_sigma_omega_deg",
+                est.mixing_sigma_omega_deg.as_ref().map(Spanned::span),
+            ),
             _ => Place::Key(field.key(), None),
         },
         F::Sensor(f) => Place::Sensor(f),
@@ -165,10 +191,9 @@ fn sensor_error(
         let hit = match field {
             SensorField::Position => s
                 .position
-                .get_ref()
-                .iter()
-                .any(|v| same(*v))
-                .then(|| s.position.span()),
+                .as_ref()
+                .filter(|p| p.get_ref().iter().any(|v| same(*v)))
+                .map(Spanned::span),
             SensorField::SigmaRange => s
                 .sigma_range
                 .as_ref()

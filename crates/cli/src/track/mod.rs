@@ -5,16 +5,21 @@
 //! estimator checked once with every default filled in ([`spec`]); with a `[tracker]`
 //! table that is mapped onto the tracker's configuration ([`tracker_config`], whose
 //! errors [`errors`] maps back to the file's keys). The [`job`] is then one target
-//! ([`single`], [`single_imm`], started by the one two-point start of [`start`]) or the
+//! ([`single`], [`single_imm`], [`single_aircraft`], started by the one two-point start
+//! of [`start`] or, for the aircraft IMM, its own) or the
 //! multi-target tracker ([`multi`]); both write their rows through [`rows`].
 
 mod errors;
+mod geo;
 mod job;
 mod multi;
+mod multi_smooth;
 mod rows;
 mod schema;
 mod single;
+mod single_aircraft;
 mod single_imm;
+mod smooth;
 mod spec;
 mod start;
 #[cfg(test)]
@@ -23,25 +28,36 @@ mod tracker_config;
 
 use std::path::Path;
 
+pub(crate) use smooth::Smoothing;
+
 use crate::error::CliError;
 use crate::output::write_atomic;
 use crate::plotfile;
 
 /// Runs `argus track`: the configuration at `config` over the plot file `plots_path`,
-/// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`).
-/// Returns the number of rows written.
+/// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`),
+/// with the smoothed columns when `smoothing` is given. Returns the number of rows written.
 ///
 /// # Errors
-/// [`CliError::Input`] for bad configuration or plots, filter errors, I/O.
-pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize, CliError> {
-    let job = job::load(config)?;
+/// [`CliError::Input`] for bad configuration or plots, filter errors, I/O;
+/// [`CliError::Smooth`] for a track that cannot be smoothed.
+pub(crate) fn run(
+    config: &Path,
+    plots_path: &Path,
+    out: &Path,
+    smoothing: Option<Smoothing>,
+) -> Result<usize, CliError> {
+    let loaded = job::load_all(config)?;
+    let reference = loaded.reference.as_ref();
     let plots = plotfile::read(plots_path)?;
-    match job {
+    match loaded.job {
         job::Job::Single { sensors, estimator } => {
             let ctx = start::Ctx {
                 config,
                 plots_path,
                 sensors: &sensors,
+                reference,
+                smoothing,
             };
             let rows = single::run(&ctx, &estimator, &plots)?;
             let n = rows.rows();
@@ -53,6 +69,8 @@ pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize,
                 config,
                 plots: plots_path,
                 out,
+                reference,
+                smoothing,
             };
             multi::run(&m, &files, &plots)
         }

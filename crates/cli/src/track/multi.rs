@@ -11,7 +11,10 @@ use argus_tracker::{
     Tracker, TrackerConfig, TrackerError,
 };
 
+use super::geo::Reference;
+use super::multi_smooth::Recorded;
 use super::rows::{Column, Point, TrackRows};
+use super::smooth::Smoothing;
 use super::tracker_config::MultiTarget;
 use crate::error::CliError;
 use crate::output::write_atomic;
@@ -25,27 +28,44 @@ pub(super) struct Files<'a> {
     pub(super) plots: &'a Path,
     /// The tracks CSV to write.
     pub(super) out: &'a Path,
+    /// The system reference point (`lat, lon` columns).
+    pub(super) reference: Option<&'a Reference>,
+    /// `--smooth` / `--smooth-lag` ([`super::multi_smooth`]).
+    pub(super) smoothing: Option<Smoothing>,
 }
 
 /// The tracks CSV's columns for a configuration: the IMMs add the mode probabilities,
-/// the multi-IMM its noise estimate, track-score management the score.
+/// the multi-IMM its noise estimate, the aircraft IMM its turn rate (before the score),
+/// track-score management the score.
 fn columns(c: &TrackerConfig) -> Vec<Column> {
     let (modes, noise) = match c.estimator {
         EstimatorConfig::Kf | EstimatorConfig::Ekf => (0, false),
         EstimatorConfig::ImmCv2 { .. } => (2, false),
         EstimatorConfig::MultiImm { .. } => (2, true),
+        EstimatorConfig::Aircraft { .. } => (3, false),
     };
-    Column::tracker(modes, noise, c.score.is_some())
+    let mut cols = Column::tracker(modes, noise, c.score.is_some());
+    if matches!(c.estimator, EstimatorConfig::Aircraft { .. }) {
+        let at = cols.len() - usize::from(c.score.is_some());
+        cols.splice(at..at, Column::TURN_RATE);
+    }
+    cols
 }
 
-/// One row: the track's state at its time, as produced by the scan of `sensor`.
-fn row(out: &mut TrackRows, sensor: SensorId, track: &Track) {
+/// One row: the track's state at its time, as produced by the scan of `sensor`; with
+/// smoothing, kept until the end of the run ([`Recorded`]).
+fn row(out: &mut TrackRows, rec: Option<&mut Recorded>, sensor: SensorId, track: &Track) {
+    if let Some(rec) = rec {
+        rec.push(sensor, track);
+        return;
+    }
     let reason = track.deletion().map_or("", reason_name);
     let mu = track.mode_probabilities();
     let p = Point::new(track.time(), track.estimate())
         .of_track(sensor.0, track.id().0, status_name(track.status()), reason)
-        .modes(mu.as_ref().map(<[f64; 2]>::as_slice))
+        .modes(mu.as_ref().map(|m| m.as_slice()))
         .noise(track.noise_estimate())
+        .turn_rate(track.turn_rate())
         .score(track.score());
     out.push(&p);
 }
@@ -87,7 +107,7 @@ fn plot_error(files: &Files<'_>, plots: &[FilePlot], start: usize, e: TrackerErr
 }
 
 /// The CSV name of a status.
-fn status_name(s: TrackStatus) -> &'static str {
+pub(super) fn status_name(s: TrackStatus) -> &'static str {
     match s {
         TrackStatus::Tentative => "tentative",
         TrackStatus::Confirmed => "confirmed",
@@ -96,7 +116,7 @@ fn status_name(s: TrackStatus) -> &'static str {
 }
 
 /// The CSV and JSON name of a deletion reason.
-fn reason_name(r: DeletionReason) -> &'static str {
+pub(super) fn reason_name(r: DeletionReason) -> &'static str {
     match r {
         DeletionReason::NotConfirmed => "not-confirmed",
         DeletionReason::Misses => "misses",
@@ -142,6 +162,12 @@ struct Summary<'a> {
     plots_assigned: usize,
     rows: usize,
     tracks: Counts,
+    /// With `--smooth` / `--smooth-lag`: the method.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    smoothing: Option<String>,
+    /// With smoothing: the tracks smoothed (those confirmed at some scan).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    smoothed_tracks: Option<usize>,
 }
 
 /// The summary's path beside the tracks file: `<stem>.summary.json`.
@@ -167,8 +193,16 @@ pub(super) fn run(
         .map(|p| tracker_plot(files, p))
         .collect::<Result<Vec<_>, _>>()?;
     let c = &m.config;
+    let mut recorded = match files.smoothing {
+        Some(_) => Some(Recorded::new(files, c)?),
+        None => None,
+    };
     let mut tracker = Tracker::new(c.clone())?;
-    let mut out = TrackRows::new(columns(c));
+    let mut columns = columns(c);
+    if recorded.is_some() {
+        columns.extend(Column::smoothed_tracker());
+    }
+    let mut out = TrackRows::with_reference(columns, files.reference);
     let mut counts = Counts {
         deleted_by_reason: REASONS.iter().map(|r| (reason_name(*r), 0)).collect(),
         ..Counts::default()
@@ -203,7 +237,7 @@ pub(super) fn run(
         let mut all: Vec<&Track> = tracker.tracks().iter().chain(&deleted).collect();
         all.sort_by_key(|tr| tr.id());
         for tr in all {
-            row(&mut out, s, tr);
+            row(&mut out, recorded.as_mut(), s, tr);
         }
         start += len;
     }
@@ -214,6 +248,10 @@ pub(super) fn run(
             TrackStatus::Deleted => {}
         }
     }
+    let smoothed_tracks = match (recorded, files.smoothing) {
+        (Some(rec), Some(how)) => Some(rec.smooth_into(how, &mut out)?),
+        _ => None,
+    };
     let rows = out.rows();
     write_atomic(files.out, out.into_text().as_bytes())?;
     let summary = Summary {
@@ -235,6 +273,8 @@ pub(super) fn run(
         plots_assigned: assigned,
         rows,
         tracks: counts,
+        smoothing: files.smoothing.map(Smoothing::describe),
+        smoothed_tracks,
     };
     let path = summary_path(files.out);
     let json = serde_json::to_string_pretty(&summary)

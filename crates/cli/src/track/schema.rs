@@ -23,15 +23,31 @@ pub(super) struct File {
     pub(super) estimator: EstimatorTable,
     /// `[tracker]`: present for the multi-target tracker.
     pub(super) tracker: Option<Spanned<TrackerTable>>,
+    /// `[reference]`: the system reference point (geodetic sites, `lat, lon` columns).
+    pub(super) reference: Option<Spanned<ReferenceTable>>,
 }
 
-/// A `[[sensor]]`: id and position (`[x, y]` or `[x, y, z]`); polar sensors also their
-/// noise, spherical ones also the elevation noise.
+/// `[reference]`: the origin of the local East-North-Up plane, WGS-84 (degrees, metres
+/// above the ellipsoid).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ReferenceTable {
+    pub(super) latitude: Spanned<f64>,
+    pub(super) longitude: Spanned<f64>,
+    pub(super) altitude: Option<Spanned<f64>>,
+}
+
+/// A `[[sensor]]`: id and position (`[x, y]` or `[x, y, z]`, or a WGS-84 `latitude,
+/// longitude, altitude` with a `[reference]`); polar sensors also their noise, spherical
+/// ones also the elevation noise.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SensorTable {
     pub(super) id: Spanned<u32>,
-    pub(super) position: Spanned<Vec<f64>>,
+    pub(super) position: Option<Spanned<Vec<f64>>>,
+    pub(super) latitude: Option<Spanned<f64>>,
+    pub(super) longitude: Option<Spanned<f64>>,
+    pub(super) altitude: Option<Spanned<f64>>,
     pub(super) sigma_range: Option<Spanned<f64>>,
     pub(super) sigma_azimuth_deg: Option<Spanned<f64>>,
     pub(super) sigma_elevation_deg: Option<Spanned<f64>>,
@@ -49,6 +65,9 @@ pub(super) enum EstimatorKind {
     Imm,
     /// The multi-IMM measurement-noise estimator of seed 000 eqs (8)–(14) around that IMM.
     MultiImm,
+    /// The aircraft IMM (`argus_imm::AircraftImm`): two CV modes and a coordinated turn
+    /// with the turn rate as a state, EKFs on one radar's polar plots.
+    AircraftImm,
 }
 
 impl EstimatorKind {
@@ -59,6 +78,7 @@ impl EstimatorKind {
             Self::Ekf => "ekf",
             Self::Imm => "imm",
             Self::MultiImm => "multi-imm",
+            Self::AircraftImm => "aircraft-imm",
         }
     }
 }
@@ -86,6 +106,22 @@ pub(super) struct EstimatorTable {
     pub(super) p: Option<Spanned<f64>>,
     pub(super) clip: Option<Spanned<f64>>,
     pub(super) per_axis: Option<Spanned<bool>>,
+    pub(super) cv_sigma_a: Option<Spanned<Vec<f64>>>,
+    pub(super) ct_sigma_a: Option<Spanned<f64>>,
+    pub(super) ct_sigma_omega_deg: Option<Spanned<f64>>,
+    pub(super) start_sigma_omega_deg: Option<Spanned<f64>>,
+    pub(super) mixing: Option<Spanned<Mixing>>,
+    pub(super) mixing_sigma_omega_deg: Option<Spanned<f64>>,
+}
+
+/// The aircraft IMM's mixing rule for the turn rate (`argus_imm::Augmentation`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub(super) enum Mixing {
+    /// Granström et al.'s unbiased rule.
+    Unbiased,
+    /// `ω = 0` with the standard deviation `mixing_sigma_omega_deg`.
+    Fixed,
 }
 
 /// One motion model of an IMM: `kind = "cv"` or `"ct"` (with `rate_deg`).

@@ -225,7 +225,7 @@ impl Cx<'_> {
     /// The per-track estimator: `kf-converted` is the tracker's KF, `ekf` its EKF, `imm`
     /// its two-mode CV IMM, `multi-imm` its multi-IMM around that IMM (five hypotheses on
     /// one common scale; grid spacing and clip as checked, defaults included, by
-    /// [`super::spec`]).
+    /// [`super::spec`]), `aircraft-imm` its aircraft IMM with the tuning checked there.
     fn estimator_into(&self, c: &mut TrackerConfig, estimator: &Estimator) -> Result<(), CliError> {
         let e = self.estimator;
         c.estimator = match estimator {
@@ -272,6 +272,7 @@ impl Cx<'_> {
                     clip: multi.clip,
                 }
             }
+            Estimator::Aircraft(tuning) => EstimatorConfig::Aircraft { tuning: *tuning },
         };
         Ok(())
     }
