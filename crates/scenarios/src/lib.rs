@@ -67,7 +67,7 @@ pub mod experiments {
 }
 
 pub use api::{RunOutput, ScenarioInfo, list, merge, run};
-pub use campaign::{Campaign, RecordText, Splittable, in_process};
+pub use campaign::{Campaign, RecordText, Splittable, in_process, run_whole};
 pub use context::{NoProgress, Progress, RunContext};
 pub use error::{ParamProblem, ScenarioError};
 pub use params::{ParamSpec, Params};
