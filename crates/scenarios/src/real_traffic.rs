@@ -46,7 +46,7 @@ pub fn trackers(
 
 use argus_sim::{ChaCha8Rng, SensorSpec, Truth};
 
-use crate::campaign::{Campaign, Splittable, in_process};
+use crate::campaign::{Campaign, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -91,8 +91,7 @@ impl Scenario for RealTraffic {
     }
 
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let records = Splittable::records(self, ctx)?;
-        self.reduce_records(&ctx.params, &in_process(records, &ctx.runs))
+        run_whole(self, ctx)
     }
 
     fn splittable(&self) -> Option<&dyn Splittable> {
@@ -108,7 +107,13 @@ impl Campaign for RealTraffic {
         Setup::new(params)
     }
 
-    fn one_run(&self, s: &Setup, run: u64, rng: &mut ChaCha8Rng) -> Result<RealRun, ScenarioError> {
+    fn one_run(
+        &self,
+        s: &Setup,
+        _seed: u64,
+        run: u64,
+        rng: &mut ChaCha8Rng,
+    ) -> Result<RealRun, ScenarioError> {
         s.one_run(run, rng)
     }
 

@@ -127,3 +127,9 @@ fn bias_32_sweep_split_equals_whole() {
         &[0, 1, 3],
     );
 }
+
+#[test]
+fn real_traffic_split_equals_whole() {
+    // Three noise realisations of the hour's first five minutes.
+    split_equals_whole("real-traffic", &["duration=300"], &[0, 1, 3]);
+}

@@ -258,7 +258,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
     let map = Figure {
         name: "map".into(),
         title: format!(
-            "ADS-B truth, plots (first minute) and {} tracks (run 0)",
+            "ADS-B truth, plots (first minute) and {} tracks (first run)",
             s.trackers[0].name
         ),
         x_label: "east of the radar (km)".into(),
