@@ -17,23 +17,30 @@ mod single;
 mod single_imm;
 mod spec;
 mod start;
+mod stream;
 #[cfg(test)]
 mod tests;
 mod tracker_config;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use crate::error::CliError;
 use crate::output::write_atomic;
 use crate::plotfile;
 
+pub use stream::TrackStream;
+
 /// Runs `argus track`: the configuration at `config` over the plot file `plots_path`,
 /// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`).
-/// Returns the number of rows written.
+/// Returns the number of rows written and the summary's path (multi-target only).
 ///
 /// # Errors
 /// [`CliError::Input`] for bad configuration or plots, filter errors, I/O.
-pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize, CliError> {
+pub fn run(
+    config: &Path,
+    plots_path: &Path,
+    out: &Path,
+) -> Result<(usize, Option<PathBuf>), CliError> {
     let job = job::load(config)?;
     let plots = plotfile::read(plots_path)?;
     match job {
@@ -46,7 +53,7 @@ pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize,
             let rows = single::run(&ctx, &estimator, &plots)?;
             let n = rows.rows();
             write_atomic(out, rows.into_text().as_bytes())?;
-            Ok(n)
+            Ok((n, None))
         }
         job::Job::Multi(m) => {
             let files = multi::Files {
@@ -54,7 +61,8 @@ pub(crate) fn run(config: &Path, plots_path: &Path, out: &Path) -> Result<usize,
                 plots: plots_path,
                 out,
             };
-            multi::run(&m, &files, &plots)
+            let (n, summary) = multi::run(&m, &files, &plots)?;
+            Ok((n, Some(summary)))
         }
     }
 }
