@@ -37,6 +37,15 @@ class Filter:
         t0: Optional[float] = None,
     ) -> FilterRun:
         """Filters ``plots`` (``n × 2``) at ``times`` from ``(x0, P0)`` at ``t0``."""
+    def smooth(
+        self,
+        times: ArrayLike,
+        plots: ArrayLike,
+        x0: ArrayLike,
+        P0: ArrayLike,
+        t0: float,
+    ) -> FilterRun:
+        """Fixed-interval RTS (unscented RTS for the UKF) smoothing of the same run."""
 
 class KalmanFilter(Filter):
     """Linear KF on ``"cv"`` (q = σ_a, m/s²), ``"ca"`` (q = σ_j, m/s³) or ``"ct"`` (q = σ_v,

@@ -12,10 +12,7 @@ use crate::errors::input;
 
 /// `obj` as a read-only float64 array: float64 arrays as they are, other real dtypes and
 /// sequences converted with `numpy.asarray(obj, dtype=float64)`.
-fn float_array<'py>(
-    obj: &Bound<'py, PyAny>,
-    name: &str,
-) -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
+fn float_array<'py>(obj: &Bound<'py, PyAny>, name: &str) -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
     if let Ok(a) = obj.cast::<PyArrayDyn<f64>>() {
         return Ok(a.readonly());
     }
@@ -63,7 +60,11 @@ pub(crate) fn read(
 ) -> PyResult<(Vec<f64>, Vec<usize>)> {
     let a = float_array(obj, name)?;
     let got = a.shape().to_vec();
-    let ok = got.len() == shape.len() && got.iter().zip(shape).all(|(g, s)| s.is_none_or(|s| s == *g));
+    let ok = got.len() == shape.len()
+        && got
+            .iter()
+            .zip(shape)
+            .all(|(g, s)| s.is_none_or(|s| s == *g));
     if !ok {
         let want: Vec<String> = shape
             .iter()

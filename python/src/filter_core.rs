@@ -3,7 +3,7 @@
 //! model (CV, CA, CT) and sensor (Cartesian position, polar radar).
 
 use argus_core_math::{Gaussian, Vector};
-use argus_filters::{FilterError, GaussianFilter};
+use argus_filters::{FilterError, RtsTrack, SmoothError, SmoothingFilter};
 use argus_sensors::MeasurementModel;
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -83,6 +83,24 @@ pub(crate) trait DynFilter: Send + Sync {
     /// The batch run (no Python objects: called with the GIL released). `x0` and `p0`
     /// row-major; `dts[k]` the interval before plot `k` (0: no prediction).
     fn run(&self, x0: &[f64], p0: &[f64], dts: &[f64], plots: &[f64]) -> Result<RunOut, RunFail>;
+    /// The fixed-interval RTS smoother (unscented RTS for the UKF) of the same run from
+    /// `(x0, P0)` at `t0` over plots at `times` (strictly after `t0`, increasing): the
+    /// smoothed estimate at each plot, with the forward pass's NIS.
+    fn smooth(
+        &self,
+        start: (&[f64], &[f64], f64),
+        times: &[f64],
+        plots: &[f64],
+    ) -> Result<RunOut, SmoothFail>;
+}
+
+/// A smoothing failure: the starting estimate, or the smoother's error.
+#[derive(Debug)]
+pub(crate) enum SmoothFail {
+    /// The starting estimate is invalid.
+    Start(argus_core_math::MathError),
+    /// The forward or backward pass failed.
+    Smooth(SmoothError),
 }
 
 /// The concrete pair: filter `F` on an `N`-state, sensor `Me` of `M` components.
@@ -93,7 +111,7 @@ pub(crate) struct Typed<F, Me, const N: usize, const M: usize> {
 
 impl<const N: usize, const M: usize, F, Me> DynFilter for Typed<F, Me, N, M>
 where
-    F: GaussianFilter<N> + Send + Sync,
+    F: SmoothingFilter<N> + Send + Sync,
     Me: MeasurementModel<N, M> + Send + Sync,
 {
     fn n(&self) -> usize {
@@ -184,6 +202,43 @@ where
             out.x.extend_from_slice(est.mean().as_slice());
             out.p.extend_from_slice(est.cov().transpose().as_slice());
             out.nis.push(innov.nis);
+        }
+        Ok(out)
+    }
+
+    fn smooth(
+        &self,
+        (x0, p0, t0): (&[f64], &[f64], f64),
+        times: &[f64],
+        plots: &[f64],
+    ) -> Result<RunOut, SmoothFail> {
+        let start = Gaussian::new(
+            Vector::<N>::from_column_slice(x0),
+            argus_core_math::Matrix::<N, N>::from_row_slice(p0),
+        )
+        .map_err(SmoothFail::Start)?;
+        let mut track = RtsTrack::new(t0, start).map_err(SmoothFail::Smooth)?;
+        let mut nis = Vec::with_capacity(times.len());
+        for (k, t) in times.iter().enumerate() {
+            let z = Vector::<M>::from_column_slice(&plots[k * M..(k + 1) * M]);
+            track
+                .predict(&self.filter, *t)
+                .map_err(SmoothFail::Smooth)?;
+            let innov = track
+                .update(&self.filter, &self.meas, &z)
+                .map_err(SmoothFail::Smooth)?;
+            nis.push(innov.nis);
+        }
+        let smoothed = track.smooth().map_err(SmoothFail::Smooth)?;
+        let mut out = RunOut {
+            x: Vec::with_capacity(times.len() * N),
+            p: Vec::with_capacity(times.len() * N * N),
+            nis,
+        };
+        // Step 0 is the start at t0; the plots' steps follow.
+        for g in smoothed.iter().skip(1) {
+            out.x.extend_from_slice(g.mean().as_slice());
+            out.p.extend_from_slice(g.cov().transpose().as_slice());
         }
         Ok(out)
     }

@@ -12,8 +12,8 @@ use pyo3::PyClassInitializer;
 use pyo3::prelude::*;
 
 use crate::arrays::{finite, matrix, out_array, read};
-use crate::errors::{input, invalid};
-use crate::filter_core::{DynFilter, RunFail, Typed, filter_error};
+use crate::errors::{Kind, input, invalid, raise, rust_name};
+use crate::filter_core::{DynFilter, RunFail, SmoothFail, Typed, filter_error};
 
 /// Which filter.
 #[derive(Debug, Clone, Copy)]
@@ -72,7 +72,8 @@ where
             sigma_range,
             sigma_azimuth,
         } => {
-            let noise = RadarNoise::constant(sigma_range, sigma_azimuth, 0.0).map_err(sensor_err)?;
+            let noise =
+                RadarNoise::constant(sigma_range, sigma_azimuth, 0.0).map_err(sensor_err)?;
             let meas = Polar2D::<N>::new(indices, position, noise).map_err(sensor_err)?;
             Ok(match kind {
                 FilterKind::Kf(_) => {
@@ -277,6 +278,59 @@ impl Filter {
         let nis = out_array(py, out.nis, &[steps])?;
         let cls = py.import("argus_tracking._results")?.getattr("FilterRun")?;
         cls.call1((x, p, nis))
+    }
+
+    /// Fixed-interval smoothing (RTS; the unscented RTS for the UKF) of the run over
+    /// `plots` at `times` from `(x0, P0)` at `t0` (before `times[0]`; times increasing).
+    /// Returns `FilterRun(x, P, nis)`: the smoothed estimate at each plot and the forward
+    /// pass's NIS. The GIL is released.
+    #[pyo3(signature = (times, plots, x0, P0, t0))]
+    fn smooth<'py>(
+        &self,
+        py: Python<'py>,
+        times: &Bound<'py, PyAny>,
+        plots: &Bound<'py, PyAny>,
+        x0: &Bound<'py, PyAny>,
+        #[allow(non_snake_case)] P0: &Bound<'py, PyAny>,
+        t0: f64,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let (n, m) = (self.inner.n(), self.inner.m());
+        let (times, _) = read(times, "times", &[None])?;
+        let (plots, shape) = read(plots, "plots", &[None, Some(m)])?;
+        if shape[0] != times.len() {
+            return Err(input(format!(
+                "argument 'plots': {} rows for {} times",
+                shape[0],
+                times.len()
+            )));
+        }
+        let (x0, _) = read(x0, "x0", &[Some(n)])?;
+        let (p0, _) = read(P0, "P0", &[Some(n), Some(n)])?;
+        let t0 = finite(t0, "t0")?;
+        let inner = &self.inner;
+        let out = py
+            .detach(|| inner.smooth((&x0, &p0, t0), &times, &plots))
+            .map_err(|e| smooth_error(&e))?;
+        let steps = times.len();
+        let x = out_array(py, out.x, &[steps, n])?;
+        let p = out_array(py, out.p, &[steps, n, n])?;
+        let nis = out_array(py, out.nis, &[steps])?;
+        let cls = py.import("argus_tracking._results")?.getattr("FilterRun")?;
+        cls.call1((x, p, nis))
+    }
+}
+
+/// A smoother's error: time order and bad input as `InvalidInputError`, a failed step as
+/// `NumericalError`, naming the step.
+fn smooth_error(e: &SmoothFail) -> PyErr {
+    match e {
+        SmoothFail::Start(e) => invalid("MathError", "argument 'P0'", e),
+        SmoothFail::Smooth(e @ argus_filters::SmoothError::ForwardFailed { .. }) => raise(
+            Kind::Numerical,
+            &rust_name("SmoothError", e),
+            format!("smoother: {e}"),
+        ),
+        SmoothFail::Smooth(e) => invalid("SmoothError", "smoother", e),
     }
 }
 

@@ -4,7 +4,9 @@
 //! measurement-noise estimate after every plot.
 
 use argus_filters::Kf;
-use argus_imm::{DifferenceNoiseImm, Imm, ImmError, MarkovMatrix, MultiImm, NoiseGrid, NoiseVariances};
+use argus_imm::{
+    DifferenceNoiseImm, Imm, ImmError, MarkovMatrix, MultiImm, NoiseGrid, NoiseVariances,
+};
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use pyo3::PyClassInitializer;
 use pyo3::prelude::*;
@@ -30,15 +32,23 @@ fn planar_models(models: &Bound<'_, PyAny>) -> PyResult<Vec<PlanarModel>> {
             ))
         })?;
         let name: String = t.get_item(0)?.extract().map_err(|_| {
-            input(format!("argument 'models': models[{i}][0] must be 'cv' or 'ct'"))
+            input(format!(
+                "argument 'models': models[{i}][0] must be 'cv' or 'ct'"
+            ))
         })?;
         let num = |j: usize, what: &str| -> PyResult<f64> {
-            t.get_item(j)
-                .and_then(|v| v.extract::<f64>())
-                .map_err(|_| input(format!("argument 'models': models[{i}] needs {what} at [{j}]")))
+            t.get_item(j).and_then(|v| v.extract::<f64>()).map_err(|_| {
+                input(format!(
+                    "argument 'models': models[{i}] needs {what} at [{j}]"
+                ))
+            })
         };
         let motion = |e: argus_motion_models::MotionError| {
-            invalid("MotionError", &format!("argument 'models': models[{i}]"), &e)
+            invalid(
+                "MotionError",
+                &format!("argument 'models': models[{i}]"),
+                &e,
+            )
         };
         out.push(match (name.as_str(), t.len()) {
             ("cv", 2) => PlanarModel::from(Cv2D::discrete(num(1, "q")?).map_err(motion)?),
@@ -62,10 +72,7 @@ fn planar_models(models: &Bound<'_, PyAny>) -> PyResult<Vec<PlanarModel>> {
     Ok(out)
 }
 
-fn build_imm<const R: usize>(
-    models: &[PlanarModel],
-    transition: &[f64],
-) -> PyResult<PlanarImm<R>> {
+fn build_imm<const R: usize>(models: &[PlanarModel], transition: &[f64]) -> PyResult<PlanarImm<R>> {
     let mut filters = Vec::with_capacity(R);
     for m in models {
         filters.push(Kf::new(*m));
@@ -112,12 +119,14 @@ fn multi<const R: usize>(
     let clip_err = |e: ImmError| invalid("ImmError", "argument 'clip'", &e);
     Ok(match n {
         3 => Box::new(Multi::<R, 3> {
-            multi: MultiImm::new(imm, NoiseGrid::common(p).map_err(grid_err)?, clip).map_err(clip_err)?,
+            multi: MultiImm::new(imm, NoiseGrid::common(p).map_err(grid_err)?, clip)
+                .map_err(clip_err)?,
             origin,
             reference,
         }),
         5 => Box::new(Multi::<R, 5> {
-            multi: MultiImm::new(imm, NoiseGrid::common(p).map_err(grid_err)?, clip).map_err(clip_err)?,
+            multi: MultiImm::new(imm, NoiseGrid::common(p).map_err(grid_err)?, clip)
+                .map_err(clip_err)?,
             origin,
             reference,
         }),
@@ -150,7 +159,10 @@ fn transition(obj: &Bound<'_, PyAny>, r: usize) -> PyResult<Vec<f64>> {
 }
 
 fn position(p: (f64, f64)) -> PyResult<[f64; 2]> {
-    Ok([finite(p.0, "sensor_position")?, finite(p.1, "sensor_position")?])
+    Ok([
+        finite(p.0, "sensor_position")?,
+        finite(p.1, "sensor_position")?,
+    ])
 }
 
 fn variances(sigma_range: f64, sigma_azimuth: f64) -> PyResult<NoiseVariances> {
@@ -216,12 +228,17 @@ impl ImmBase {
             .map_err(|f| match f {
                 ImmFail::Start(arg, e) => invalid("ImmError", &format!("argument '{arg}'"), &e),
                 ImmFail::Step(k, name, text) => {
-                    let kind = if name.contains("InvalidInterval") || name.starts_with("SensorError") {
-                        Kind::InvalidInput
-                    } else {
-                        Kind::Numerical
-                    };
-                    raise(kind, &name, format!("step {k} (times[{k}] = {}): {text}", times[k]))
+                    let kind =
+                        if name.contains("InvalidInterval") || name.starts_with("SensorError") {
+                            Kind::InvalidInput
+                        } else {
+                            Kind::Numerical
+                        };
+                    raise(
+                        kind,
+                        &name,
+                        format!("step {k} (times[{k}] = {}): {text}", times[k]),
+                    )
                 }
             })?;
         let n = times.len();
@@ -273,7 +290,11 @@ impl Imm_ {
             }
         };
         let inner = by_modes!(m.len(), plain, &m, &t, plots)?;
-        Ok(PyClassInitializer::from(ImmBase { inner, noise: false }).add_subclass(Self))
+        Ok(PyClassInitializer::from(ImmBase {
+            inner,
+            noise: false,
+        })
+        .add_subclass(Self))
     }
 }
 
@@ -299,7 +320,13 @@ impl MultiImm_ {
     ) -> PyResult<PyClassInitializer<Self>> {
         let m = planar_models(models)?;
         let t = self::transition(transition, m.len())?;
-        let args = (position(sensor_position)?, variances(sigma_range, sigma_azimuth)?, n, p, clip);
+        let args = (
+            position(sensor_position)?,
+            variances(sigma_range, sigma_azimuth)?,
+            n,
+            p,
+            clip,
+        );
         let inner = by_modes!(m.len(), multi, &m, &t, args)?;
         Ok(PyClassInitializer::from(ImmBase { inner, noise: true }).add_subclass(Self))
     }

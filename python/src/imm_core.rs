@@ -6,8 +6,8 @@
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::Kf;
 use argus_imm::{
-    DifferenceEstimate, DifferenceNoiseImm, Imm, ImmError, ImmEstimate, MultiImm,
-    MultiImmEstimate, NoiseVariances, UnbiasedConversion,
+    DifferenceEstimate, DifferenceNoiseImm, Imm, ImmError, ImmEstimate, MultiImm, MultiImmEstimate,
+    NoiseVariances, UnbiasedConversion,
 };
 use argus_motion_models::PlanarModel;
 use argus_sensors::{CartesianPosition, PolarMeasurement};
@@ -207,8 +207,9 @@ impl<const R: usize> DynImm for Difference<R> {
         plots: &[f64],
     ) -> Result<ImmOut, ImmFail> {
         let conv = conversion(self.origin)?;
-        let mut est = DifferenceEstimate::new(start_estimate::<R>(start)?, self.initial, self.prior_count)
-            .map_err(|e| ImmFail::Start("prior_count".into(), e))?;
+        let mut est =
+            DifferenceEstimate::new(start_estimate::<R>(start)?, self.initial, self.prior_count)
+                .map_err(|e| ImmFail::Start("prior_count".into(), e))?;
         let mut out = ImmOut {
             noise: Some(Vec::with_capacity(2 * dts.len())),
             ..ImmOut::default()

@@ -11,7 +11,10 @@ use crate::errors::{input, invalid};
 
 /// `(x − truth)ᵀ P⁻¹ (x − truth)` for one row of size `D`.
 fn one<const D: usize>(x: &[f64], p: &[f64], t: &[f64]) -> Result<f64, argus_core_math::MathError> {
-    let g = Gaussian::new(Vector::<D>::from_column_slice(x), Matrix::<D, D>::from_row_slice(p))?;
+    let g = Gaussian::new(
+        Vector::<D>::from_column_slice(x),
+        Matrix::<D, D>::from_row_slice(p),
+    )?;
     Ok(g.mahalanobis_sq(&Vector::<D>::from_column_slice(t)))
 }
 
@@ -32,7 +35,11 @@ pub(crate) fn nees_py<'py>(
     let (tv, _) = read(truth, "truth", &[Some(n), Some(d)])?;
     let mut out = Vec::with_capacity(n);
     for k in 0..n {
-        let (xs, ps, ts) = (&xv[k * d..(k + 1) * d], &pv[k * d * d..(k + 1) * d * d], &tv[k * d..(k + 1) * d]);
+        let (xs, ps, ts) = (
+            &xv[k * d..(k + 1) * d],
+            &pv[k * d * d..(k + 1) * d * d],
+            &tv[k * d..(k + 1) * d],
+        );
         let v = match d {
             1 => one::<1>(xs, ps, ts),
             2 => one::<2>(xs, ps, ts),
@@ -40,7 +47,11 @@ pub(crate) fn nees_py<'py>(
             4 => one::<4>(xs, ps, ts),
             5 => one::<5>(xs, ps, ts),
             6 => one::<6>(xs, ps, ts),
-            _ => return Err(input(format!("argument 'x': dimension {d} (1 to 6 supported)"))),
+            _ => {
+                return Err(input(format!(
+                    "argument 'x': dimension {d} (1 to 6 supported)"
+                )));
+            }
         }
         .map_err(|e| invalid("MathError", &format!("argument 'P': P[{k}]"), &e))?;
         out.push(v);
@@ -60,7 +71,9 @@ pub(crate) fn chi2_interval(dim: usize, runs: usize, confidence: f64) -> PyResul
 }
 
 fn points<const D: usize>(v: &[f64]) -> Vec<Vector<D>> {
-    v.chunks_exact(D).map(Vector::<D>::from_column_slice).collect()
+    v.chunks_exact(D)
+        .map(Vector::<D>::from_column_slice)
+        .collect()
 }
 
 fn sets(
@@ -71,7 +84,9 @@ fn sets(
     let d = ts[1];
     let (e, _) = read(estimates, "estimates", &[None, Some(d)])?;
     if !(1..=3).contains(&d) {
-        return Err(input(format!("argument 'truth': dimension {d} (1 to 3 supported)")));
+        return Err(input(format!(
+            "argument 'truth': dimension {d} (1 to 3 supported)"
+        )));
     }
     Ok((t, e, d))
 }
@@ -92,7 +107,8 @@ pub(crate) fn ospa<'py>(
     order: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (t, e, d) = sets(truth, estimates)?;
-    let o = Ospa::new(finite(cutoff, "cutoff")?, finite(order, "order")?).map_err(|e| sim_error(&e))?;
+    let o =
+        Ospa::new(finite(cutoff, "cutoff")?, finite(order, "order")?).map_err(|e| sim_error(&e))?;
     let v = match d {
         1 => o.distance(&points::<1>(&t), &points::<1>(&e)),
         2 => o.distance(&points::<2>(&t), &points::<2>(&e)),
@@ -119,7 +135,8 @@ pub(crate) fn gospa<'py>(
     order: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (t, e, d) = sets(truth, estimates)?;
-    let g = Gospa::new(finite(cutoff, "cutoff")?, finite(order, "order")?).map_err(|e| sim_error(&e))?;
+    let g = Gospa::new(finite(cutoff, "cutoff")?, finite(order, "order")?)
+        .map_err(|e| sim_error(&e))?;
     let v = match d {
         1 => g.distance(&points::<1>(&t), &points::<1>(&e)),
         2 => g.distance(&points::<2>(&t), &points::<2>(&e)),

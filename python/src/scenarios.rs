@@ -17,7 +17,11 @@ fn scenario_error(e: &ScenarioError) -> PyErr {
             e.to_string(),
         ),
         ScenarioError::Param { .. } => invalid("ScenarioError", "parameter", e),
-        _ => raise(Kind::Numerical, &rust_name("ScenarioError", e), e.to_string()),
+        _ => raise(
+            Kind::Numerical,
+            &rust_name("ScenarioError", e),
+            e.to_string(),
+        ),
     }
 }
 

@@ -135,3 +135,34 @@ def test_imm_equals_filterpy_imm_estimator(modes):
         close(run.P[k], ref.P, f"combined P at step {k}")
         close(run.mode_probabilities[k], ref.mu, f"mode probabilities at step {k}")
     assert run.noise is None
+
+
+@pytest.mark.parametrize("cls", ["kf", "ukf"])
+def test_rts_smoother_equals_filterpy_rts_smoother(cls):
+    # Issue 19: Argus's fixed-interval RTS smoother (the unscented RTS for the UKF, which
+    # on a linear model equals the RTS to round-off) against FilterPy's rts_smoother on
+    # the same forward pass, to 1e-9.
+    t, z = plots(150, seed=14)
+    sigma = 1.0
+    if cls == "kf":
+        ours = at.KalmanFilter("cv", q=sigma, R=R)
+    else:
+        ours = at.UnscentedKalmanFilter("cv", q=sigma, sensor="cartesian", R=R)
+    ref = fkf(cv_f(DT), q(sigma, DT))
+    xs, ps = [], []
+    for k in range(len(t)):
+        ref.predict()
+        ref.update(z[k])
+        xs.append(ref.x.copy())
+        ps.append(ref.P.copy())
+    sx, sp, _, _ = ref.rts_smoother(np.array(xs), np.array(ps))
+    sm = ours.smooth(t, z, X0, P0, t0=0.0)
+    # UKF: its sigma-point moments equal the KF's to round-off on a linear model
+    # (~1e-12 relative), well inside 1e-9.
+    for k in range(len(t)):
+        close(sm.x[k], sx[k], f"smoothed x at step {k}")
+        close(sm.P[k], sp[k], f"smoothed P at step {k}")
+    # Smoothing never increases the variance (the filtered P minus the smoothed is PSD).
+    filt = ours.run(t, z, X0, P0, t0=0.0)
+    for k in range(len(t)):
+        assert np.linalg.eigvalsh(filt.P[k] - sm.P[k]).min() > -1e-9
