@@ -147,9 +147,7 @@ impl FilePlot {
 /// # Errors
 /// [`CliError::Input`] naming the file, line and field; [`CliError::Io`].
 pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
-    let rdr = reader()
-        .from_path(path)
-        .map_err(|e| csv_error(path, e))?;
+    let rdr = reader().from_path(path).map_err(|e| csv_error(path, e))?;
     read_from(rdr, path)
 }
 

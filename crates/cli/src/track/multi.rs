@@ -67,7 +67,12 @@ pub(super) fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliE
 
 /// A [`TrackerError`] about plot `index` of the scan starting at file plot `start`, at
 /// that plot's line.
-pub(super) fn plot_error(files: &Files<'_>, plots: &[FilePlot], start: usize, e: TrackerError) -> CliError {
+pub(super) fn plot_error(
+    files: &Files<'_>,
+    plots: &[FilePlot],
+    start: usize,
+    e: TrackerError,
+) -> CliError {
     let (index, field) = match &e {
         TrackerError::TimeOrder { index, .. } => (*index, Some("t")),
         TrackerError::UnknownSensor { index, .. } => (*index, Some("sensor")),
