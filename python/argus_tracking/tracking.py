@@ -138,12 +138,23 @@ def track(
     *,
     as_pandas: Optional[bool] = None,
     summary: bool = False,
+    smooth: Union[None, bool, int, float] = None,
 ) -> Any:
     """Runs ``argus track`` on ``plots`` with ``config``; returns the tracks table with the
     tracks CSV's columns and values (a structured array, or a DataFrame when
     ``as_pandas`` or when ``plots`` is one). With ``summary=True`` returns
     ``(table, summary)``, the summary being the command's ``<out>.summary.json`` (multi-
-    target jobs; ``None`` otherwise) without its file names. The GIL is released."""
+    target jobs; ``None`` otherwise) without its file names. ``smooth`` adds the smoothed
+    columns as the command's flags do: ``True`` is ``--smooth`` (fixed interval), an int
+    ``N`` is ``--smooth-lag N``, a float ``S`` is ``--smooth-lag-seconds S``. The GIL is
+    released."""
+    flags: "dict[str, Any]" = {}
+    if smooth is True:
+        flags["smooth"] = True
+    elif isinstance(smooth, (int, np.integer)) and not isinstance(smooth, bool):
+        flags["smooth_lag"] = int(smooth)
+    elif isinstance(smooth, (float, np.floating)):
+        flags["smooth_lag_seconds"] = float(smooth)
     if as_pandas is None:
         as_pandas = _is_pandas(plots)
     text = plots_text(plots)
@@ -154,7 +165,7 @@ def track(
             with open(plots_path, "w", encoding="utf-8") as f:
                 f.write(text)
             out = os.path.join(folder, "tracks.csv")
-            _, summary_path = _native.track_files(cfg, plots_path, out)
+            _, summary_path = _native.track_files(cfg, plots_path, out, **flags)
         except ArgusError as e:
             raise _clean(e, folder) from None
         with open(out, encoding="utf-8") as f:

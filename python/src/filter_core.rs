@@ -11,6 +11,9 @@ use pyo3::prelude::*;
 use crate::arrays::{matrix, out_matrix, out_vector, vector};
 use crate::errors::{Kind, invalid, raise, rust_name};
 
+/// An estimate `(x, P)` handed back to Python.
+pub(crate) type Estimate<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
+
 /// A filter step's error: bad input (an interval, a parameter) or a numerical failure.
 pub(crate) fn filter_error(context: &str, e: &FilterError) -> PyErr {
     match e {
@@ -62,7 +65,7 @@ pub(crate) trait DynFilter: Send + Sync {
         x: &Bound<'py, PyAny>,
         p: &Bound<'py, PyAny>,
         dt: f64,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)>;
+    ) -> PyResult<Estimate<'py>>;
     /// `(x, P)` updated with `z`.
     fn update<'py>(
         &self,
@@ -70,7 +73,7 @@ pub(crate) trait DynFilter: Send + Sync {
         x: &Bound<'py, PyAny>,
         p: &Bound<'py, PyAny>,
         z: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)>;
+    ) -> PyResult<Estimate<'py>>;
     /// Predict over `dt` (skipped when `dt == 0`), then update with `z`.
     fn step<'py>(
         &self,
@@ -79,7 +82,7 @@ pub(crate) trait DynFilter: Send + Sync {
         p: &Bound<'py, PyAny>,
         dt: f64,
         z: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)>;
+    ) -> PyResult<Estimate<'py>>;
     /// The batch run (no Python objects: called with the GIL released). `x0` and `p0`
     /// row-major; `dts[k]` the interval before plot `k` (0: no prediction).
     fn run(&self, x0: &[f64], p0: &[f64], dts: &[f64], plots: &[f64]) -> Result<RunOut, RunFail>;
@@ -128,7 +131,7 @@ where
         x: &Bound<'py, PyAny>,
         p: &Bound<'py, PyAny>,
         dt: f64,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<Estimate<'py>> {
         let g = estimate::<N>(x, p)?;
         let out = self
             .filter
@@ -143,7 +146,7 @@ where
         x: &Bound<'py, PyAny>,
         p: &Bound<'py, PyAny>,
         z: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<Estimate<'py>> {
         let g = estimate::<N>(x, p)?;
         let z = vector::<M>(z, "z")?;
         let (out, _) = self
@@ -160,7 +163,7 @@ where
         p: &Bound<'py, PyAny>,
         dt: f64,
         z: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<Estimate<'py>> {
         let mut g = estimate::<N>(x, p)?;
         let z = vector::<M>(z, "z")?;
         if dt != 0.0 {

@@ -7,13 +7,12 @@ use argus_core_math::Matrix;
 use argus_filters::{CovarianceForm, Ekf, Kf, Ukf, UtParams};
 use argus_motion_models::{Ca2D, CoordinatedTurn, Cv2D, LinearMotionModel};
 use argus_sensors::{CartesianPosition, Polar2D, RadarNoise};
-use numpy::{PyArray1, PyArray2};
 use pyo3::PyClassInitializer;
 use pyo3::prelude::*;
 
 use crate::arrays::{finite, matrix, out_array, read};
 use crate::errors::{Kind, input, invalid, raise, rust_name};
-use crate::filter_core::{DynFilter, RunFail, SmoothFail, Typed, filter_error};
+use crate::filter_core::{DynFilter, Estimate, RunFail, SmoothFail, Typed, filter_error};
 
 /// Which filter.
 #[derive(Debug, Clone, Copy)]
@@ -206,7 +205,7 @@ impl Filter {
         x: &Bound<'py, PyAny>,
         #[allow(non_snake_case)] P: &Bound<'py, PyAny>,
         dt: f64,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<Estimate<'py>> {
         self.inner.predict(py, x, P, dt)
     }
 
@@ -217,7 +216,7 @@ impl Filter {
         x: &Bound<'py, PyAny>,
         #[allow(non_snake_case)] P: &Bound<'py, PyAny>,
         z: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<Estimate<'py>> {
         self.inner.update(py, x, P, z)
     }
 
@@ -229,7 +228,7 @@ impl Filter {
         #[allow(non_snake_case)] P: &Bound<'py, PyAny>,
         dt: f64,
         z: &Bound<'py, PyAny>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<Estimate<'py>> {
         self.inner.step(py, x, P, dt, z)
     }
 

@@ -5,7 +5,8 @@
 
 use std::path::{Path, PathBuf};
 
-use argus_cli::{CliError, TrackStream};
+use argus_cli::{CliError, Smoothing, TrackStream};
+use argus_filters::Lag;
 use pyo3::prelude::*;
 
 use crate::errors::{Kind, raise, rust_name};
@@ -23,15 +24,31 @@ fn cli_error(e: &CliError) -> PyErr {
 }
 
 /// Runs `argus track` on the files: returns the number of rows and the summary's path
-/// (multi-target jobs). The GIL is released.
+/// (multi-target jobs). `smooth` is `--smooth`, `smooth_lag` `--smooth-lag N`,
+/// `smooth_lag_seconds` `--smooth-lag-seconds S` (at most one). The GIL is released.
 #[pyfunction]
+#[pyo3(signature = (config, plots, out, smooth=false, smooth_lag=None, smooth_lag_seconds=None))]
 pub(crate) fn track_files(
     py: Python<'_>,
     config: PathBuf,
     plots: PathBuf,
     out: PathBuf,
+    smooth: bool,
+    smooth_lag: Option<usize>,
+    smooth_lag_seconds: Option<f64>,
 ) -> PyResult<(usize, Option<PathBuf>)> {
-    py.detach(|| argus_cli::track_files(&config, &plots, &out))
+    let smoothing = match (smooth, smooth_lag, smooth_lag_seconds) {
+        (false, None, None) => None,
+        (true, None, None) => Some(Smoothing::Interval),
+        (false, Some(n), None) if n >= 1 => Some(Smoothing::Lag(Lag::Steps(n))),
+        (false, None, Some(s)) if s.is_finite() && s > 0.0 => Some(Smoothing::Lag(Lag::Seconds(s))),
+        _ => {
+            return Err(crate::errors::input(
+                "argument 'smooth': True, a lag of N >= 1 steps (int) or S > 0 seconds (float), one at most",
+            ));
+        }
+    };
+    py.detach(|| argus_cli::track_files(&config, &plots, &out, smoothing))
         .map_err(|e| cli_error(&e))
 }
 

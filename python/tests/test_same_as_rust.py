@@ -128,6 +128,11 @@ def test_track_single_target_and_pandas(tmp_path, run_cli, root):
     out = tmp_path / "tracks.csv"
     run_cli("track", "--config", str(config), "--plots", str(plots_path), "--out", str(out))
     cli = tracks_table(out.read_text())
+    # With the command's --smooth (fixed-interval RTS), the same smoothed columns.
+    run_cli("track", "--config", str(config), "--plots", str(plots_path), "--out", str(out), "--smooth")
+    smoothed = tracks_table(out.read_text())
+    _assert_tables_equal(at.track(_plot_array(plots_path), config, smooth=True), smoothed)
+    assert "xs" in smoothed.dtype.names
     frame = pd.read_csv(plots_path, dtype={"sensor": "int64"})
     ours = at.track(frame, config)
     assert isinstance(ours, pd.DataFrame)

@@ -79,6 +79,18 @@ pub enum CliError {
     /// Scoring tracks against a truth failed (a malformed file names file:line:field).
     #[error("score: {0}")]
     Score(#[from] argus_score::ScoreError),
+    /// Smoothing a track failed (`argus track --smooth`): nothing is written.
+    #[error("smoothing track {track}: step {step} (t = {time} s): {message}")]
+    Smooth {
+        /// The track (1 for the single-target job).
+        track: u64,
+        /// The step (0 is the track's first estimate; rows of one time are one step).
+        step: usize,
+        /// The step's time (s).
+        time: f64,
+        /// What failed.
+        message: String,
+    },
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {

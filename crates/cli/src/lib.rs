@@ -18,7 +18,7 @@ mod summary;
 mod track;
 
 pub use crate::error::{CliError, Location};
-pub use crate::track::{TrackStream, run as track_files};
+pub use crate::track::{Smoothing, TrackStream, run as track_files};
 
 use std::io::IsTerminal;
 use std::ops::Range;
@@ -27,6 +27,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use argus_filters::Lag;
 use argus_scenarios::{Params, Scenario};
 
 use crate::progress::Bar;
@@ -104,6 +105,18 @@ enum Command {
         /// Track file to write (CSV).
         #[arg(long)]
         out: PathBuf,
+        /// Also write each track smoothed over its whole life (fixed-interval RTS / IMM
+        /// smoother): the `xs, vxs, …` columns.
+        #[arg(long, conflicts_with_all = ["smooth_lag", "smooth_lag_seconds"])]
+        smooth: bool,
+        /// Fixed-lag smoothing: each estimate smoothed with the next N steps (N ≥ 1).
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..),
+              conflicts_with = "smooth_lag_seconds")]
+        smooth_lag: Option<u64>,
+        /// Fixed-lag smoothing: each estimate smoothed with the steps of the next S
+        /// seconds (S > 0).
+        #[arg(long, value_name = "S", value_parser = positive_seconds, allow_negative_numbers = true)]
+        smooth_lag_seconds: Option<f64>,
     },
     /// Scores a tracks CSV (confirmed rows) against a truth CSV: completeness, breaks,
     /// swaps, spurious time, RMSE, GOSPA (docs/scoring.md); the score as JSON in --out.
@@ -124,6 +137,15 @@ enum Command {
         #[arg(long, default_value_t = 1000.0)]
         cutoff: f64,
     },
+}
+
+/// Parses `--smooth-lag-seconds`: a finite number of seconds above 0.
+fn positive_seconds(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        Ok(v) => Err(format!("{v} is not a positive, finite number of seconds")),
+        Err(_) => Err(format!("{s:?} is not a number of seconds")),
+    }
 }
 
 /// Parses `N` (= `0..N`) or `A..B`.
@@ -304,8 +326,24 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 truth_path.display()
             );
         }
-        Command::Track { config, plots, out } => {
-            let (n, summary) = track::run(&config, &plots, &out)?;
+        Command::Track {
+            config,
+            plots,
+            out,
+            smooth,
+            smooth_lag,
+            smooth_lag_seconds,
+        } => {
+            let smoothing = match (smooth, smooth_lag, smooth_lag_seconds) {
+                (true, _, _) => Some(Smoothing::Interval),
+                (false, Some(n), _) => Some(Smoothing::Lag(Lag::Steps(
+                    usize::try_from(n)
+                        .map_err(|_| CliError::Usage(format!("--smooth-lag {n}: too large")))?,
+                ))),
+                (false, None, Some(s)) => Some(Smoothing::Lag(Lag::Seconds(s))),
+                (false, None, None) => None,
+            };
+            let (n, summary) = track::run(&config, &plots, &out, smoothing)?;
             if let Some(path) = summary {
                 println!("wrote {}", path.display());
             }

@@ -165,10 +165,9 @@ fn sensor_error(
         let hit = match field {
             SensorField::Position => s
                 .position
-                .get_ref()
-                .iter()
-                .any(|v| same(*v))
-                .then(|| s.position.span()),
+                .as_ref()
+                .filter(|p| p.get_ref().iter().any(|v| same(*v)))
+                .map(Spanned::span),
             SensorField::SigmaRange => s
                 .sigma_range
                 .as_ref()

@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use super::geo::{self, Reference};
 use super::schema::{self, Source};
 use super::spec::{self, Estimator, Sensor};
 use super::tracker_config::{self, MultiTarget};
@@ -21,21 +22,40 @@ pub(super) enum Job {
     Multi(MultiTarget),
 }
 
-/// Reads and checks the configuration at `path`. The sensors and the estimator are
-/// checked first, by the same rules for both jobs; then the `[tracker]` table.
+/// A checked job and the configuration's system reference point, if it has one.
+#[derive(Debug, Clone)]
+pub(super) struct Loaded {
+    pub(super) job: Job,
+    pub(super) reference: Option<Reference>,
+}
+
+/// Reads and checks the configuration at `path` ([`load_all`] without the reference).
+///
+/// # Errors
+/// As [`load_all`].
+#[cfg(test)]
+pub(super) fn load(path: &Path) -> Result<Job, CliError> {
+    load_all(path).map(|l| l.job)
+}
+
+/// Reads and checks the configuration at `path`. The reference point first (sensors may
+/// be given by latitude and longitude around it), then the sensors and the estimator, by
+/// the same rules for both jobs; then the `[tracker]` table.
 ///
 /// # Errors
 /// [`CliError::Input`] naming the file, the line and the field of the first bad value;
 /// [`CliError::Io`]; [`CliError::Motion`] for a model the motion-model crate refuses.
-pub(super) fn load(path: &Path) -> Result<Job, CliError> {
+pub(super) fn load_all(path: &Path) -> Result<Loaded, CliError> {
     let (text, file) = schema::read(path)?;
     let src = Source { path, text: &text };
-    let sensors = spec::sensors(src, &file.sensors)?;
+    let reference = geo::reference(src, file.reference.as_ref())?;
+    let sensors = spec::sensors(src, &file.sensors, reference.as_ref())?;
     let estimator = spec::estimator(src, &file.estimator)?;
-    Ok(match &file.tracker {
+    let job = match &file.tracker {
         None => Job::Single { sensors, estimator },
         Some(table) => Job::Multi(tracker_config::build(
             src, &file, table, &sensors, &estimator,
         )?),
-    })
+    };
+    Ok(Loaded { job, reference })
 }

@@ -9,12 +9,15 @@
 //! multi-target tracker ([`multi`]); both write their rows through [`rows`].
 
 mod errors;
+mod geo;
 mod job;
 mod multi;
+mod multi_smooth;
 mod rows;
 mod schema;
 mod single;
 mod single_imm;
+mod smooth;
 mod spec;
 mod start;
 mod stream;
@@ -24,31 +27,38 @@ mod tracker_config;
 
 use std::path::{Path, PathBuf};
 
+pub use smooth::Smoothing;
+pub use stream::TrackStream;
+
 use crate::error::CliError;
 use crate::output::write_atomic;
 use crate::plotfile;
 
-pub use stream::TrackStream;
-
 /// Runs `argus track`: the configuration at `config` over the plot file `plots_path`,
-/// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`).
-/// Returns the number of rows written and the summary's path (multi-target only).
+/// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`),
+/// with the smoothed columns when `smoothing` is given. Returns the number of rows written
+/// and the summary's path (multi-target only).
 ///
 /// # Errors
-/// [`CliError::Input`] for bad configuration or plots, filter errors, I/O.
+/// [`CliError::Input`] for bad configuration or plots, filter errors, I/O;
+/// [`CliError::Smooth`] for a track that cannot be smoothed.
 pub fn run(
     config: &Path,
     plots_path: &Path,
     out: &Path,
+    smoothing: Option<Smoothing>,
 ) -> Result<(usize, Option<PathBuf>), CliError> {
-    let job = job::load(config)?;
+    let loaded = job::load_all(config)?;
+    let reference = loaded.reference.as_ref();
     let plots = plotfile::read(plots_path)?;
-    match job {
+    match loaded.job {
         job::Job::Single { sensors, estimator } => {
             let ctx = start::Ctx {
                 config,
                 plots_path,
                 sensors: &sensors,
+                reference,
+                smoothing,
             };
             let rows = single::run(&ctx, &estimator, &plots)?;
             let n = rows.rows();
@@ -60,6 +70,8 @@ pub fn run(
                 config,
                 plots: plots_path,
                 out,
+                reference,
+                smoothing,
             };
             let (n, summary) = multi::run(&m, &files, &plots)?;
             Ok((n, Some(summary)))

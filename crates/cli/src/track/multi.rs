@@ -11,7 +11,10 @@ use argus_tracker::{
     Tracker, TrackerConfig, TrackerError,
 };
 
+use super::geo::Reference;
+use super::multi_smooth::Recorded;
 use super::rows::{Column, Point, TrackRows};
+use super::smooth::Smoothing;
 use super::tracker_config::MultiTarget;
 use crate::error::CliError;
 use crate::output::write_atomic;
@@ -25,6 +28,10 @@ pub(super) struct Files<'a> {
     pub(super) plots: &'a Path,
     /// The tracks CSV to write.
     pub(super) out: &'a Path,
+    /// The system reference point (`lat, lon` columns).
+    pub(super) reference: Option<&'a Reference>,
+    /// `--smooth` / `--smooth-lag` ([`super::multi_smooth`]).
+    pub(super) smoothing: Option<Smoothing>,
 }
 
 /// The tracks CSV's columns for a configuration: the IMMs add the mode probabilities,
@@ -38,8 +45,18 @@ pub(super) fn columns(c: &TrackerConfig) -> Vec<Column> {
     Column::tracker(modes, noise, c.score.is_some())
 }
 
-/// One row: the track's state at its time, as produced by the scan of `sensor`.
-pub(super) fn row(out: &mut TrackRows, sensor: SensorId, track: &Track) {
+/// One row: the track's state at its time, as produced by the scan of `sensor`; with
+/// smoothing, kept until the end of the run ([`Recorded`]).
+pub(super) fn row(
+    out: &mut TrackRows,
+    rec: Option<&mut Recorded>,
+    sensor: SensorId,
+    track: &Track,
+) {
+    if let Some(rec) = rec {
+        rec.push(sensor, track);
+        return;
+    }
     let reason = track.deletion().map_or("", reason_name);
     let mu = track.mode_probabilities();
     let p = Point::new(track.time(), track.estimate())
@@ -92,7 +109,7 @@ pub(super) fn plot_error(
 }
 
 /// The CSV name of a status.
-fn status_name(s: TrackStatus) -> &'static str {
+pub(super) fn status_name(s: TrackStatus) -> &'static str {
     match s {
         TrackStatus::Tentative => "tentative",
         TrackStatus::Confirmed => "confirmed",
@@ -101,7 +118,7 @@ fn status_name(s: TrackStatus) -> &'static str {
 }
 
 /// The CSV and JSON name of a deletion reason.
-fn reason_name(r: DeletionReason) -> &'static str {
+pub(super) fn reason_name(r: DeletionReason) -> &'static str {
     match r {
         DeletionReason::NotConfirmed => "not-confirmed",
         DeletionReason::Misses => "misses",
@@ -147,6 +164,12 @@ struct Summary<'a> {
     plots_assigned: usize,
     rows: usize,
     tracks: Counts,
+    /// With `--smooth` / `--smooth-lag`: the method.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    smoothing: Option<String>,
+    /// With smoothing: the tracks smoothed (those confirmed at some scan).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    smoothed_tracks: Option<usize>,
 }
 
 /// The summary's path beside the tracks file: `<stem>.summary.json`.
@@ -172,8 +195,16 @@ pub(super) fn run(
         .map(|p| tracker_plot(files, p))
         .collect::<Result<Vec<_>, _>>()?;
     let c = &m.config;
+    let mut recorded = match files.smoothing {
+        Some(_) => Some(Recorded::new(files, c)?),
+        None => None,
+    };
     let mut tracker = Tracker::new(c.clone())?;
-    let mut out = TrackRows::new(columns(c));
+    let mut columns = columns(c);
+    if recorded.is_some() {
+        columns.extend(Column::smoothed_tracker());
+    }
+    let mut out = TrackRows::with_reference(columns, files.reference);
     let mut counts = Counts {
         deleted_by_reason: REASONS.iter().map(|r| (reason_name(*r), 0)).collect(),
         ..Counts::default()
@@ -208,7 +239,7 @@ pub(super) fn run(
         let mut all: Vec<&Track> = tracker.tracks().iter().chain(&deleted).collect();
         all.sort_by_key(|tr| tr.id());
         for tr in all {
-            row(&mut out, s, tr);
+            row(&mut out, recorded.as_mut(), s, tr);
         }
         start += len;
     }
@@ -219,6 +250,10 @@ pub(super) fn run(
             TrackStatus::Deleted => {}
         }
     }
+    let smoothed_tracks = match (recorded, files.smoothing) {
+        (Some(rec), Some(how)) => Some(rec.smooth_into(how, &mut out)?),
+        _ => None,
+    };
     let rows = out.rows();
     write_atomic(files.out, out.into_text().as_bytes())?;
     let summary = Summary {
@@ -240,6 +275,8 @@ pub(super) fn run(
         plots_assigned: assigned,
         rows,
         tracks: counts,
+        smoothing: files.smoothing.map(Smoothing::describe),
+        smoothed_tracks,
     };
     let path = summary_path(files.out);
     let json = serde_json::to_string_pretty(&summary)

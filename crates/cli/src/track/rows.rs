@@ -7,6 +7,8 @@ use std::fmt::Write as _;
 use argus_core_math::Gaussian;
 use argus_imm::NoiseVariances;
 
+use super::geo::Reference;
+
 /// The state components' names, `[x, vx, y, vy, z, vz]`.
 const STATE: [&str; 6] = ["x", "vx", "y", "vy", "z", "vz"];
 
@@ -37,6 +39,18 @@ pub(super) enum Column {
     SigmaAzimuthDeg,
     /// `score`: the track score.
     Score,
+    /// `<component>s`: smoothed state component `i` (`xs`, `vxs`, …; `--smooth`).
+    Smoothed(usize),
+    /// `var_<component>s`: the smoothed covariance's diagonal entry `i`.
+    SmoothedVariance(usize),
+    /// `sigma_<axis>s`: the smoothed standard deviation of position axis `a`.
+    SmoothedPositionSigma(usize),
+    /// `mu_<j + 1>s`: the smoothed probability of IMM mode `j`.
+    SmoothedMode(usize),
+    /// `lat`: WGS-84 latitude (°) of the row's `x, y` (with a `[reference]`).
+    Lat,
+    /// `lon`: WGS-84 longitude (°).
+    Lon,
 }
 
 impl Column {
@@ -56,7 +70,33 @@ impl Column {
             Self::SigmaRange => "sigma_range".into(),
             Self::SigmaAzimuthDeg => "sigma_azimuth_deg".into(),
             Self::Score => "score".into(),
+            Self::Smoothed(i) => format!("{}s", state(i)),
+            Self::SmoothedVariance(i) => format!("var_{}s", state(i)),
+            Self::SmoothedPositionSigma(a) => format!("sigma_{}s", state(2 * a)),
+            Self::SmoothedMode(j) => format!("mu_{}s", j + 1),
+            Self::Lat => "lat".into(),
+            Self::Lon => "lon".into(),
         }
+    }
+
+    /// The single-target job's smoothed columns (`--smooth`): the smoothed state of
+    /// `axes` axes, its variances and `modes` smoothed mode probabilities.
+    pub(super) fn smoothed_single(axes: usize, modes: usize) -> Vec<Self> {
+        let n = 2 * axes;
+        let mut c: Vec<Self> = (0..n).map(Self::Smoothed).collect();
+        c.extend((0..n).map(Self::SmoothedVariance));
+        c.extend((0..modes).map(Self::SmoothedMode));
+        c
+    }
+
+    /// The tracker's smoothed columns: `xs, vxs, ys, vys, sigma_xs, sigma_ys`.
+    pub(super) fn smoothed_tracker() -> Vec<Self> {
+        let mut c: Vec<Self> = (0..4).map(Self::Smoothed).collect();
+        c.extend([
+            Self::SmoothedPositionSigma(0),
+            Self::SmoothedPositionSigma(1),
+        ]);
+        c
     }
 
     /// The single-target columns: `t, track`, the CV state of `axes` axes (2 or 3), its
@@ -111,6 +151,9 @@ pub(super) struct Point<'a> {
     modes: Option<&'a [f64]>,
     noise: Option<NoiseVariances>,
     score: f64,
+    /// The smoothed estimate's mean and covariance (column-major), same dimension.
+    smoothed: Option<(&'a [f64], &'a [f64])>,
+    smoothed_modes: Option<&'a [f64]>,
 }
 
 impl<'a> Point<'a> {
@@ -128,6 +171,24 @@ impl<'a> Point<'a> {
             modes: None,
             noise: None,
             score: 0.0,
+            smoothed: None,
+            smoothed_modes: None,
+        }
+    }
+
+    /// With the smoothed estimate `g` of the same state (`None`: empty cells).
+    pub(super) fn smoothed<const N: usize>(self, g: Option<&'a Gaussian<N>>) -> Self {
+        let smoothed = g
+            .filter(|_| N == self.dim)
+            .map(|g| (g.mean().as_slice(), g.cov().as_slice()));
+        Self { smoothed, ..self }
+    }
+
+    /// With smoothed IMM mode probabilities (`None`: empty cells).
+    pub(super) fn smoothed_modes(self, smoothed_modes: Option<&'a [f64]>) -> Self {
+        Self {
+            smoothed_modes,
+            ..self
         }
     }
 
@@ -167,6 +228,12 @@ impl<'a> Point<'a> {
     fn var(&self, i: usize) -> Option<f64> {
         self.cov.get(i * self.dim + i).copied()
     }
+
+    /// The smoothed covariance's entry `(i, i)`.
+    fn smoothed_var(&self, i: usize) -> Option<f64> {
+        self.smoothed
+            .and_then(|(_, cov)| cov.get(i * self.dim + i).copied())
+    }
 }
 
 /// A tracks CSV being written: the header, then one line per [`TrackRows::push`].
@@ -175,6 +242,7 @@ pub(super) struct TrackRows {
     columns: Vec<Column>,
     text: String,
     rows: usize,
+    reference: Option<Reference>,
 }
 
 impl TrackRows {
@@ -187,11 +255,28 @@ impl TrackRows {
             columns,
             text,
             rows: 0,
+            reference: None,
+        }
+    }
+
+    /// An empty file with the header of `columns` and, with a `reference`, the `lat, lon`
+    /// of each row's `x, y` (at the reference's altitude, [`Reference::lat_lon`]) last.
+    pub(super) fn with_reference(mut columns: Vec<Column>, reference: Option<&Reference>) -> Self {
+        if reference.is_some() {
+            columns.extend([Column::Lat, Column::Lon]);
+        }
+        Self {
+            reference: reference.copied(),
+            ..Self::new(columns)
         }
     }
 
     /// Appends the row of `p`.
     pub(super) fn push(&mut self, p: &Point<'_>) {
+        let lat_lon = match (self.reference, p.mean.first(), p.mean.get(2)) {
+            (Some(r), Some(&x), Some(&y)) => r.lat_lon(x, y).ok(),
+            _ => None,
+        };
         let out = &mut self.text;
         for (k, c) in self.columns.iter().enumerate() {
             if k > 0 {
@@ -212,6 +297,14 @@ impl TrackRows {
                     cell(out, p.noise.map(|v| v.azimuth().sqrt().to_degrees()))
                 }
                 Column::Score => write!(out, "{}", p.score),
+                Column::Smoothed(i) => cell(out, p.smoothed.and_then(|(m, _)| m.get(i).copied())),
+                Column::SmoothedVariance(i) => cell(out, p.smoothed_var(i)),
+                Column::SmoothedPositionSigma(a) => cell(out, p.smoothed_var(2 * a).map(f64::sqrt)),
+                Column::SmoothedMode(j) => {
+                    cell(out, p.smoothed_modes.and_then(|m| m.get(j).copied()))
+                }
+                Column::Lat => cell(out, lat_lon.map(|ll| ll.0)),
+                Column::Lon => cell(out, lat_lon.map(|ll| ll.1)),
             };
         }
         out.push('\n');
@@ -259,6 +352,20 @@ mod tests {
             names(Column::tracker(2, true, true)),
             "t,sensor,track,status,reason,x,vx,y,vy,sigma_x,sigma_y,mu_1,mu_2,sigma_range,sigma_azimuth_deg,score\n"
         );
+        // The smoothed columns (--smooth) and the geodetic ones ([reference]).
+        let mut c = Column::single(2, 2, false);
+        c.extend(Column::smoothed_single(2, 2));
+        assert_eq!(
+            names(c),
+            "t,track,x,vx,y,vy,var_x,var_vx,var_y,var_vy,mu_1,mu_2,xs,vxs,ys,vys,var_xs,var_vxs,var_ys,var_vys,mu_1s,mu_2s\n"
+        );
+        let mut c = Column::tracker(0, false, false);
+        c.extend(Column::smoothed_tracker());
+        c.extend([Column::Lat, Column::Lon]);
+        assert_eq!(
+            names(c),
+            "t,sensor,track,status,reason,x,vx,y,vy,sigma_x,sigma_y,xs,vxs,ys,vys,sigma_xs,sigma_ys,lat,lon\n"
+        );
     }
 
     #[test]
@@ -283,6 +390,21 @@ mod tests {
             multi
                 .into_text()
                 .ends_with("\n5,7,12,deleted,misses,1,2,3,4,2,3,,,,\n")
+        );
+        // A smoothed row: the smoothed mean and σ; a row without one: empty cells.
+        let h = Gaussian::new(
+            Vector::<4>::new(5.0, 6.0, 7.0, 8.0),
+            Matrix::<4, 4>::from_diagonal(&Vector::<4>::new(1.0, 0.25, 4.0, 0.0625)),
+        )
+        .unwrap();
+        let mut c = Column::tracker(0, false, false);
+        c.extend(Column::smoothed_tracker());
+        let mut s = TrackRows::new(c);
+        s.push(&Point::new(1.0, &g).smoothed(Some(&h)));
+        s.push(&Point::new(2.0, &g).smoothed::<4>(None));
+        assert!(
+            s.into_text()
+                .ends_with("\n1,0,1,,,1,2,3,4,2,3,5,6,7,8,1,2\n2,0,1,,,1,2,3,4,2,3,,,,,,\n")
         );
     }
 }

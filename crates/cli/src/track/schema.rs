@@ -23,15 +23,31 @@ pub(super) struct File {
     pub(super) estimator: EstimatorTable,
     /// `[tracker]`: present for the multi-target tracker.
     pub(super) tracker: Option<Spanned<TrackerTable>>,
+    /// `[reference]`: the system reference point (geodetic sites, `lat, lon` columns).
+    pub(super) reference: Option<Spanned<ReferenceTable>>,
 }
 
-/// A `[[sensor]]`: id and position (`[x, y]` or `[x, y, z]`); polar sensors also their
-/// noise, spherical ones also the elevation noise.
+/// `[reference]`: the origin of the local East-North-Up plane, WGS-84 (degrees, metres
+/// above the ellipsoid).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(super) struct ReferenceTable {
+    pub(super) latitude: Spanned<f64>,
+    pub(super) longitude: Spanned<f64>,
+    pub(super) altitude: Option<Spanned<f64>>,
+}
+
+/// A `[[sensor]]`: id and position (`[x, y]` or `[x, y, z]`, or a WGS-84 `latitude,
+/// longitude, altitude` with a `[reference]`); polar sensors also their noise, spherical
+/// ones also the elevation noise.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SensorTable {
     pub(super) id: Spanned<u32>,
-    pub(super) position: Spanned<Vec<f64>>,
+    pub(super) position: Option<Spanned<Vec<f64>>>,
+    pub(super) latitude: Option<Spanned<f64>>,
+    pub(super) longitude: Option<Spanned<f64>>,
+    pub(super) altitude: Option<Spanned<f64>>,
     pub(super) sigma_range: Option<Spanned<f64>>,
     pub(super) sigma_azimuth_deg: Option<Spanned<f64>>,
     pub(super) sigma_elevation_deg: Option<Spanned<f64>>,

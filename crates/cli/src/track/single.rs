@@ -3,11 +3,12 @@
 //! a 3-D CV estimator; the IMMs ([`super::single_imm`]) are 2-D. One row per estimate.
 
 use argus_core_math::Gaussian;
-use argus_filters::{two_point_cv2, two_point_cv3};
+use argus_filters::{SmoothingFilter, two_point_cv2, two_point_cv3};
 use argus_sensors::Measurement;
 
 use super::rows::{Column, Point, TrackRows};
 use super::single_imm;
+use super::smooth;
 use super::spec::Estimator;
 use super::start::{Converted, Ctx, TwoPoint, two_point};
 use crate::error::CliError;
@@ -35,6 +36,7 @@ pub(super) fn run(
                 plots,
                 |p| ctx.convert2(p),
                 two_point_cv2,
+                &f,
                 |x, dt, p| {
                     let (z, r) = ctx.convert2(p)?;
                     Ok(step(&f, x, dt, &position(r)?, &z)
@@ -50,6 +52,7 @@ pub(super) fn run(
                 plots,
                 |p| ctx.convert2(p),
                 two_point_cv2,
+                &f,
                 |x, dt, p| {
                     let post = if let Measurement::Polar(z) = p.measurement() {
                         let s = ctx.sensor(p)?;
@@ -65,6 +68,13 @@ pub(super) fn run(
             )
         }
         (Estimator::Imm(spec), false) => single_imm::imm(ctx, spec, plots),
+        (Estimator::MultiImm(..), _) if ctx.smoothing.is_some() => Err(CliError::input(
+            ctx.config,
+            None,
+            Some("estimator.kind"),
+            "--smooth / --smooth-lag: the multi-IMM is not smoothed (no smoother for its noise \
+             hypotheses); the kinds that smooth are kf-converted, ekf and imm",
+        )),
         (Estimator::MultiImm(spec, multi), false) => {
             single_imm::multi_imm(ctx, spec, *multi, plots)
         }
@@ -84,6 +94,7 @@ pub(super) fn run(
                 plots,
                 |p| ctx.convert3(p),
                 two_point_cv3,
+                &f,
                 |x, dt, p| {
                     let (z, r) = ctx.convert3(p)?;
                     Ok(step(&f, x, dt, &position3(r)?, &z)
@@ -99,6 +110,7 @@ pub(super) fn run(
                 plots,
                 |p| ctx.convert3(p),
                 two_point_cv3,
+                &f,
                 |x, dt, p| {
                     let post = if let Measurement::Spherical(z) = p.measurement() {
                         let s = ctx.sensor(p)?;
@@ -116,22 +128,38 @@ pub(super) fn run(
 }
 
 /// The KF / EKF loop: the two-point start on the first two plots, then one predict +
-/// update per plot (`update(estimate, dt, plot)`), one row per estimate.
-fn track_loop<const D: usize, const N: usize>(
+/// update per plot (`update(estimate, dt, plot)`), one row per estimate; with
+/// `ctx.smoothing`, the rows smoothed by the RTS smoother of `filter` (the estimator's own
+/// prediction, [`smooth::rts_rows`]).
+fn track_loop<const D: usize, const N: usize, F: SmoothingFilter<N>>(
     ctx: &Ctx<'_>,
     plots: &[FilePlot],
     convert: impl Fn(&FilePlot) -> Result<Converted<D>, CliError>,
     init: TwoPoint<D, N>,
+    filter: &F,
     update: impl Fn(&Gaussian<N>, f64, &FilePlot) -> Result<Gaussian<N>, CliError>,
 ) -> Result<TrackRows, CliError> {
     let start = two_point(ctx, plots, convert, init)?;
-    let mut rows = TrackRows::new(Column::single(D, 0, false));
+    let mut est: Vec<(f64, Gaussian<N>)> = Vec::with_capacity(start.rest.len() + 1);
     let (mut x, mut t) = (start.estimate, start.second.time());
-    rows.push(&Point::new(t, &x));
+    est.push((t, x));
     for p in start.rest {
         x = update(&x, p.time() - t, p)?;
         t = p.time();
-        rows.push(&Point::new(t, &x));
+        est.push((t, x));
+    }
+    let smoothed = match ctx.smoothing {
+        None => None,
+        Some(how) => Some(smooth::rts_rows(filter, &est, how).map_err(|f| f.into_cli(1))?),
+    };
+    let mut columns = Column::single(D, 0, false);
+    if smoothed.is_some() {
+        columns.extend(Column::smoothed_single(D, 0));
+    }
+    let mut rows = TrackRows::with_reference(columns, ctx.reference);
+    for (i, (t, x)) in est.iter().enumerate() {
+        let s = smoothed.as_ref().and_then(|s| s.get(i));
+        rows.push(&Point::new(*t, x).smoothed(s));
     }
     Ok(rows)
 }

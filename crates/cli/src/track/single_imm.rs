@@ -14,6 +14,7 @@ use argus_motion_models::PlanarModel;
 use argus_sensors::Measurement;
 
 use super::rows::{Column, Point, TrackRows};
+use super::smooth::{self, Failure, ImmRecorder};
 use super::spec::{ImmSpec, MAX_MODELS, MultiSpec};
 use super::start::{Ctx, too_few, two_point};
 use crate::error::CliError;
@@ -107,10 +108,15 @@ fn track_imm<const R: usize>(
     let imm = build_imm::<R>(spec)?;
     let start = two_point(ctx, plots, |p| ctx.convert2(p), two_point_cv2)?;
     let mut est = start_estimate::<R>(spec, start.estimate)?;
-    let mut rows = TrackRows::new(Column::single(2, R, false));
     let mut t = start.second.time();
-    let mu = est.mode_probabilities();
-    rows.push(&Point::new(t, &est.combined()?).modes(Some(&mu)));
+    // With smoothing, the forward pass is recorded (one step per time).
+    let mut record = ctx.smoothing.map(|_| ImmRecorder::new(*imm.markov()));
+    let mut out: Vec<(f64, Gaussian<4>, [f64; R])> = Vec::with_capacity(start.rest.len() + 1);
+    let fail = |f: Failure| f.into_cli(1);
+    if let Some(r) = &mut record {
+        r.record(&imm, t, est).map_err(fail)?;
+    }
+    out.push((t, est.combined()?, est.mode_probabilities()));
     for p in start.rest {
         let (z, r) = ctx.convert2(p)?;
         let meas = position(r)?;
@@ -123,7 +129,32 @@ fn track_imm<const R: usize>(
         est = upd.map_err(ctx.imm_error(p))?.estimate;
         t = p.time();
         let c = est.combined().map_err(ctx.imm_error(p))?;
-        rows.push(&Point::new(t, &c).modes(Some(&est.mode_probabilities())));
+        if let Some(r) = &mut record {
+            r.record(&imm, t, est).map_err(fail)?;
+        }
+        out.push((t, c, est.mode_probabilities()));
+    }
+    let smoothed = match (record, ctx.smoothing) {
+        (Some(r), Some(how)) => Some(r.smooth(&imm, how).map_err(fail)?),
+        _ => None,
+    };
+    let mut columns = Column::single(2, R, false);
+    if smoothed.is_some() {
+        columns.extend(Column::smoothed_single(2, R));
+    }
+    let mut rows = TrackRows::with_reference(columns, ctx.reference);
+    let times: Vec<f64> = out.iter().map(|o| o.0).collect();
+    let row_step = smooth::steps(&times).row_step;
+    for (i, (t, c, mu)) in out.iter().enumerate() {
+        let s = smoothed
+            .as_ref()
+            .and_then(|s| row_step.get(i).and_then(|&k| s.get(k)));
+        rows.push(
+            &Point::new(*t, c)
+                .modes(Some(mu))
+                .smoothed(s.map(|s| &s.combined))
+                .smoothed_modes(s.map(|s| s.mode_probabilities.as_slice())),
+        );
     }
     Ok(rows)
 }
@@ -183,7 +214,7 @@ fn track_multi_k<const R: usize, const K: usize>(
     let p2 = start.second;
     let mut est =
         MultiImmEstimate::<4, R, K>::new(start_estimate::<R>(spec, start.estimate)?, reference);
-    let mut rows = TrackRows::new(Column::single(2, R, true));
+    let mut rows = TrackRows::with_reference(Column::single(2, R, true), ctx.reference);
     let mut t = p2.time();
     let push = |rows: &mut TrackRows, t: f64, est: &MultiImmEstimate<4, R, K>, c: &Gaussian<4>| {
         let mu = est.mode_probabilities();

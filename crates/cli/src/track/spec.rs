@@ -7,6 +7,7 @@ use argus_imm::PROBABILITY_SUM_TOL;
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use toml::Spanned;
 
+use super::geo::{self, Reference};
 use super::schema::{EstimatorKind, EstimatorTable, ModelKind, SensorTable, Source};
 use crate::error::CliError;
 
@@ -89,32 +90,27 @@ fn non_negative(src: Source<'_>, field: &str, v: &Spanned<f64>) -> Result<f64, C
 ///
 /// # Errors
 /// [`CliError::Input`] at the bad value.
-pub(super) fn sensors(src: Source<'_>, tables: &[SensorTable]) -> Result<Vec<Sensor>, CliError> {
+pub(super) fn sensors(
+    src: Source<'_>,
+    tables: &[SensorTable],
+    reference: Option<&Reference>,
+) -> Result<Vec<Sensor>, CliError> {
     let mut sensors: Vec<Sensor> = Vec::with_capacity(tables.len());
     for s in tables {
         let id = *s.id.get_ref();
-        let pos = s.position.get_ref();
-        let position = match pos.as_slice() {
-            [x, y] => [*x, *y, 0.0],
-            [x, y, z] => [*x, *y, *z],
-            _ => {
+        let position = match (geo::sensor_position(src, s, reference)?, &s.position) {
+            (Some(enu), _) => enu,
+            (None, Some(p)) => xy_position(src, id, p)?,
+            (None, None) => {
                 return Err(src.at(
-                    &s.position,
+                    &s.id,
                     "position",
                     format!(
-                        "sensor {id}: position needs 2 or 3 coordinates, not {}",
-                        pos.len()
+                        "sensor {id}: needs position = [x, y] or latitude, longitude (with a [reference])"
                     ),
                 ));
             }
         };
-        if !position.iter().all(|v| v.is_finite()) {
-            return Err(src.at(
-                &s.position,
-                "position",
-                format!("sensor {id}: position must be finite"),
-            ));
-        }
         let polar = match (&s.sigma_range, &s.sigma_azimuth_deg) {
             (Some(r), Some(a)) => Some((
                 non_negative(src, "sigma_range", r)?,
@@ -137,6 +133,33 @@ pub(super) fn sensors(src: Source<'_>, tables: &[SensorTable]) -> Result<Vec<Sen
         });
     }
     Ok(sensors)
+}
+
+/// A sensor's `position = [x, y]` or `[x, y, z]` (z = 0 when omitted), finite.
+fn xy_position(src: Source<'_>, id: u32, p: &Spanned<Vec<f64>>) -> Result<[f64; 3], CliError> {
+    let pos = p.get_ref();
+    let position = match pos.as_slice() {
+        [x, y] => [*x, *y, 0.0],
+        [x, y, z] => [*x, *y, *z],
+        _ => {
+            return Err(src.at(
+                p,
+                "position",
+                format!(
+                    "sensor {id}: position needs 2 or 3 coordinates, not {}",
+                    pos.len()
+                ),
+            ));
+        }
+    };
+    if !position.iter().all(|v| v.is_finite()) {
+        return Err(src.at(
+            p,
+            "position",
+            format!("sensor {id}: position must be finite"),
+        ));
+    }
+    Ok(position)
 }
 
 /// Checks `[estimator]` and fills in its defaults.

@@ -8,6 +8,8 @@ use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::FilterError;
 use argus_sensors::Measurement;
 
+use super::geo::Reference;
+use super::smooth::Smoothing;
 use super::spec::Sensor;
 use crate::error::CliError;
 use crate::estimator::{unbiased, unbiased3};
@@ -21,6 +23,10 @@ pub(super) struct Ctx<'a> {
     pub(super) config: &'a Path,
     pub(super) plots_path: &'a Path,
     pub(super) sensors: &'a [Sensor],
+    /// The system reference point (`lat, lon` columns).
+    pub(super) reference: Option<&'a Reference>,
+    /// `--smooth` / `--smooth-lag`.
+    pub(super) smoothing: Option<Smoothing>,
 }
 
 impl Ctx<'_> {

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use argus_tracker::{Track, Tracker};
 
+use super::geo::Reference;
 use super::job::{self, Job};
 use super::multi::{self, Files};
 use super::rows::TrackRows;
@@ -20,6 +21,7 @@ pub struct TrackStream {
     job: MultiTarget,
     tracker: Tracker,
     config: PathBuf,
+    reference: Option<Reference>,
 }
 
 impl TrackStream {
@@ -29,11 +31,13 @@ impl TrackStream {
     /// As `argus track` for the configuration; [`CliError::Input`] when it has no
     /// `[tracker]` table (a single-target configuration).
     pub fn new(config: &Path) -> Result<Self, CliError> {
-        match job::load(config)? {
+        let loaded = job::load_all(config)?;
+        match loaded.job {
             Job::Multi(m) => Ok(Self {
                 tracker: Tracker::new(m.config.clone())?,
                 job: m,
                 config: config.to_path_buf(),
+                reference: loaded.reference,
             }),
             Job::Single { .. } => Err(CliError::input(
                 config,
@@ -66,12 +70,15 @@ impl TrackStream {
             config: &self.config,
             plots: name,
             out: name,
+            reference: self.reference.as_ref(),
+            smoothing: None,
         };
         let converted = plots
             .iter()
             .map(|p| multi::tracker_plot(&files, p))
             .collect::<Result<Vec<_>, _>>()?;
-        let mut out = TrackRows::new(multi::columns(&self.job.config));
+        let mut out =
+            TrackRows::with_reference(multi::columns(&self.job.config), self.reference.as_ref());
         let mut start = 0;
         while start < converted.len() {
             let (t, s) = (converted[start].time(), converted[start].sensor());
@@ -86,7 +93,7 @@ impl TrackStream {
             let mut all: Vec<&Track> = self.tracker.tracks().iter().chain(&deleted).collect();
             all.sort_by_key(|tr| tr.id());
             for tr in all {
-                multi::row(&mut out, s, tr);
+                multi::row(&mut out, None, s, tr);
             }
             start += len;
         }
