@@ -7,6 +7,10 @@
 //!   the README's test command and what CI runs.
 //! - `cargo xtask bench [--quick] [FILTER]`: runs the criterion benches and writes `docs/BENCHMARKS.md`
 //!   (bench, median, machine) from criterion's `estimates.json` files.
+//! - `cargo xtask cluster-test [--runs N] [--keep]`: a 4-shard `argus run gimpo` campaign and
+//!   its merge on a one-node Slurm started on localhost ([`cluster_test`]).
+
+mod cluster_test;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -16,6 +20,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("test") => test(),
+        Some("cluster-test") => cluster_test::cluster_test(&workspace_root(), &args[1..]),
         Some("bench") => {
             let quick = args.iter().any(|a| a == "--quick");
             let filter = args
@@ -25,7 +30,7 @@ fn main() -> ExitCode {
                 .map(String::as_str);
             bench(filter, quick)
         }
-        _ => Err("usage: cargo xtask <test | bench [--quick] [FILTER]>".to_owned()),
+        _ => Err("usage: cargo xtask <test | bench [--quick] [FILTER] | cluster-test [--runs N] [--keep]>".to_owned()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -79,6 +79,9 @@ pub enum CliError {
     /// Scoring tracks against a truth failed (a malformed file names file:line:field).
     #[error("score: {0}")]
     Score(#[from] argus_score::ScoreError),
+    /// A merged campaign is not whole (a shard or runs missing or given twice).
+    #[error("{0}")]
+    Merge(#[from] crate::merge_error::MergeError),
     /// Smoothing a track failed (`argus track --smooth`): nothing is written.
     #[error("smoothing track {track}: step {step} (t = {time} s): {message}")]
     Smooth {

@@ -6,14 +6,18 @@
 //! Errors are printed once (`error: <file>:<line>: field '<f>': <what>`) and the process
 //! exits with code 2; nothing a user feeds in panics.
 
+mod campaign_plan;
+mod campaign_scan;
 mod error;
 mod estimator;
+mod merge_error;
 mod output;
 mod plotfile;
 mod progress;
 mod render;
 mod runs_file;
 mod score;
+mod shard;
 mod summary;
 mod track;
 
@@ -61,6 +65,19 @@ enum Command {
         /// Parameter override `key=value` (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Cut the runs into this many shards and compute only `--shard` (one task of a
+        /// cluster job array; `argus merge` then checks that every shard is there).
+        #[arg(long, requires = "shard")]
+        shards: Option<u64>,
+        /// The shard to compute, `0..shards` (e.g. `$SLURM_ARRAY_TASK_ID`).
+        #[arg(long, requires = "shards")]
+        shard: Option<u64>,
+    },
+    /// Writes the job files of a campaign for a cluster: a Slurm job array and its
+    /// dependent merge job, a Kubernetes Indexed Job and its merge Job (docs/cluster.md).
+    Campaign {
+        #[command(subcommand)]
+        action: CampaignAction,
     },
     /// Merges split campaigns (`argus run --runs A..B` into several directories):
     /// recomputes the report from the union of their per-run files.
@@ -139,6 +156,40 @@ enum Command {
     },
 }
 
+#[derive(Debug, Subcommand)]
+enum CampaignAction {
+    /// Writes the job files (Slurm batch scripts, Kubernetes manifests) into --out.
+    Plan {
+        /// Scenario name.
+        scenario: String,
+        /// Number of runs `N` (runs 0..N) or a range `A..B` of run indices.
+        #[arg(long)]
+        runs: String,
+        /// Number of shards (array tasks / completions).
+        #[arg(long)]
+        shards: u64,
+        /// Base seed.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Parameter override `key=value` (repeatable), passed to every shard.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Directory for the job files.
+        #[arg(long)]
+        out: PathBuf,
+        /// Shared directory the shards write to and the merge reads (default: `<out>/shards`,
+        /// made absolute).
+        #[arg(long)]
+        shared: Option<PathBuf>,
+        /// The `argus` the jobs run (default: this executable's path).
+        #[arg(long)]
+        argus: Option<String>,
+        /// Container image of the Kubernetes jobs.
+        #[arg(long, default_value = "argus:latest")]
+        image: String,
+    },
+}
+
 /// Parses `--smooth-lag-seconds`: a finite number of seconds above 0.
 fn positive_seconds(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
@@ -179,11 +230,24 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             seed,
             out,
             set,
+            shards,
+            shard,
         } => {
             let sc = find(&scenario)?;
-            let runs = match runs {
+            let campaign = match runs {
                 Some(r) => parse_runs(&r)?,
                 None => 0..sc.default_runs(),
+            };
+            let (runs, shard) = match (shards, shard) {
+                (Some(count), Some(index)) => (
+                    shard::shard_range(&campaign, count, index)?,
+                    Some(runs_file::ShardInfo {
+                        index,
+                        count,
+                        campaign: [campaign.start, campaign.end],
+                    }),
+                ),
+                _ => (campaign, None),
             };
             let params = Params::from_settings(&sc.params(), &set)?;
             let out = out.unwrap_or_else(|| PathBuf::from("out").join(sc.name()));
@@ -191,13 +255,10 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let run = argus_scenarios::run(sc.as_ref(), runs.clone(), seed, params.clone(), &bar)?;
             let report = run.report;
             let runs_text = match &run.records {
-                Some(records) => Some(runs_file::runs_text(
-                    sc.name(),
-                    seed,
-                    &runs,
-                    &params,
-                    records,
-                )?),
+                Some(records) => {
+                    let header = runs_file::Header::new(sc.name(), seed, &runs, &params, shard);
+                    Some(runs_file::runs_text(&header, records)?)
+                }
                 None => None,
             };
             let mut extra = Vec::new();
@@ -215,8 +276,14 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             };
             let mut files = summary::write(&report, &out, &info)?;
             files.extend(extra.iter().cloned());
+            let of = shard.map_or_else(String::new, |s| {
+                format!(
+                    " (shard {} of {} of runs {}..{})",
+                    s.index, s.count, s.campaign[0], s.campaign[1]
+                )
+            });
             println!(
-                "argus run {} --seed {seed} --runs {}..{}",
+                "argus run {} --seed {seed} --runs {}..{}{of}",
                 sc.name(),
                 runs.start,
                 runs.end
@@ -248,12 +315,18 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     d.display()
                 )));
             }
-            let m = runs_file::read_dirs(sc.name(), &sc.params(), &dirs)?;
-            let report = argus_scenarios::merge(sc.as_ref(), &m.params, &m.records)?;
-            let records: Vec<String> = m.records.iter().map(|r| r.json.clone()).collect();
-            let text = runs_file::runs_text(sc.name(), m.seed, &m.runs, &m.params, &records)?;
+            // The whole campaign is checked before anything is reduced; then the records
+            // are streamed, file after file, to the reduce step and to the merged file.
+            let m = campaign_scan::scan(sc.name(), &sc.params(), &dirs)?;
+            let report = argus_scenarios::merge(
+                sc.as_ref(),
+                &m.params,
+                m.runs.end - m.runs.start,
+                &mut campaign_scan::records(&m.files),
+            )?;
+            let header = runs_file::Header::new(sc.name(), m.seed, &m.runs, &m.params, None);
             let path = runs_file::runs_file(&out, &m.runs);
-            output::write_atomic(&path, text.as_bytes())?;
+            runs_file::write_streamed(&path, &header, &mut campaign_scan::lines(&m.files))?;
             let extra = vec![path.display().to_string()];
             let info = RunInfo {
                 scenario: sc.name(),
@@ -287,6 +360,32 @@ fn execute(cli: Cli) -> Result<(), CliError> {
         } => {
             let sc = find(&scenario)?;
             let params = Params::from_settings(&sc.params(), &set)?;
+            let truth_path = truth.unwrap_or_else(|| out.with_extension("truth.csv"));
+            if let Some(sim) = sc.simulated(&params, seed, run) {
+                let sim = sim?;
+                let (text, skipped) = plotfile::write_text(&sim.plots);
+                if skipped > 0 {
+                    return Err(CliError::Usage(format!(
+                        "{skipped} plots of another layout cannot share one file"
+                    )));
+                }
+                output::write_atomic(&out, text.as_bytes())?;
+                let mut t_text = String::from("t,target,x,vx,y,vy\n");
+                for r in &sim.truth {
+                    t_text.push_str(&format!(
+                        "{},{},{},{},{},{}\n",
+                        r.t, r.target, r.x, r.vx, r.y, r.vy
+                    ));
+                }
+                output::write_atomic(&truth_path, t_text.as_bytes())?;
+                println!(
+                    "wrote {} ({} plots) and {}",
+                    out.display(),
+                    sim.plots.len(),
+                    truth_path.display()
+                );
+                return Ok(());
+            }
             let (scene, sensors) = sc.scene(&params)?;
             let plots =
                 argus_sim::generate_plots(&scene, &sensors, &mut argus_sim::run_rng(seed, run))?;
@@ -317,7 +416,6 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     }
                 }
             }
-            let truth_path = truth.unwrap_or_else(|| out.with_extension("truth.csv"));
             output::write_atomic(&truth_path, t_text.as_bytes())?;
             println!(
                 "wrote {} ({} plots) and {}",
@@ -325,6 +423,47 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 plots.len(),
                 truth_path.display()
             );
+        }
+        Command::Campaign {
+            action:
+                CampaignAction::Plan {
+                    scenario,
+                    runs,
+                    shards,
+                    seed,
+                    set,
+                    out,
+                    shared,
+                    argus,
+                    image,
+                },
+        } => {
+            let sc = find(&scenario)?;
+            let runs = parse_runs(&runs)?;
+            // Checked here, so that no job of the campaign fails on a bad setting.
+            Params::from_settings(&sc.params(), &set)?;
+            let argus = match argus {
+                Some(a) => a,
+                None => std::env::current_exe()
+                    .map_err(|e| CliError::io(std::path::Path::new("argus"), e))?
+                    .display()
+                    .to_string(),
+            };
+            let shared = shared.unwrap_or_else(|| out.join("shards"));
+            let shared = std::path::absolute(&shared).map_err(|e| CliError::io(&shared, e))?;
+            let plan = campaign_plan::Plan {
+                scenario: sc.name(),
+                runs,
+                shards,
+                seed,
+                settings: &set,
+                shared: &shared,
+                argus: &argus,
+                image: &image,
+            };
+            for line in campaign_plan::write(&plan, &out)? {
+                println!("{line}");
+            }
         }
         Command::Track {
             config,

@@ -1,41 +1,89 @@
-//! The per-run files of splittable campaigns (`runs/<A>-<B>.jsonl`, format in
-//! `docs/FORMATS.md`): written by `argus run`, read back and checked by `argus merge`.
+//! The per-run files of split campaigns (`runs/<A>-<B>.jsonl`, format in
+//! `docs/FORMATS.md`): their layout and how `argus run` and `argus merge` write them.
+//! Reading them back, with the campaign's checks, is [`crate::campaign_scan`].
 //!
 //! ```text
-//! {"argus_runs":1,"scenario":"cv-polar","seed":1,"runs":[0,40],"params":{...}}
+//! {"argus_runs":2,"argus_version":"0.1.0","scenario":"gimpo","seed":1,"runs":[0,25],"params":{...},"shard":{"index":0,"count":4,"campaign":[0,100]}}
 //! {"run":0,"record":...}
 //! {"run":1,"record":...}
 //! ```
 
 use std::collections::BTreeMap;
+use std::io::Write;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use argus_scenarios::{ParamSpec, Params, RecordText};
+use argus_scenarios::Params;
 use serde::{Deserialize, Serialize};
 
 use crate::error::CliError;
 
-/// Version of the per-run file layout (the header's `argus_runs` value).
-pub(crate) const RUNS_FORMAT: u32 = 1;
+/// Version of the per-run file layout (the header's `argus_runs` value). 2 added the
+/// Argus version and the shard of a planned campaign.
+pub(crate) const RUNS_FORMAT: u32 = 2;
 
-/// First line of a per-run file.
-#[derive(Debug, Serialize, Deserialize)]
+/// The version of this `argus`, written into every header and required of every file a
+/// merge reads (a record's layout may change between versions).
+pub(crate) const ARGUS_VERSION: &str = env!("CARGO_PKG_VERSION");
+
+/// Which shard of a planned campaign a file holds (`argus run --shards K --shard i`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct Header {
-    argus_runs: u32,
-    scenario: String,
-    seed: u64,
-    runs: [u64; 2],
-    params: BTreeMap<String, f64>,
+pub(crate) struct ShardInfo {
+    /// The shard's index, `0..count`.
+    pub(crate) index: u64,
+    /// Number of shards of the campaign.
+    pub(crate) count: u64,
+    /// The whole campaign's runs `[start, end)`.
+    pub(crate) campaign: [u64; 2],
 }
 
-/// Every later line.
+/// First line of a per-run file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct Header {
+    pub(crate) argus_runs: u32,
+    pub(crate) argus_version: String,
+    pub(crate) scenario: String,
+    pub(crate) seed: u64,
+    pub(crate) runs: [u64; 2],
+    pub(crate) params: BTreeMap<String, f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub(crate) shard: Option<ShardInfo>,
+}
+
+impl Header {
+    /// The header of runs `runs` of `scenario` written by this `argus`.
+    pub(crate) fn new(
+        scenario: &str,
+        seed: u64,
+        runs: &Range<u64>,
+        params: &Params,
+        shard: Option<ShardInfo>,
+    ) -> Self {
+        Self {
+            argus_runs: RUNS_FORMAT,
+            argus_version: ARGUS_VERSION.to_owned(),
+            scenario: scenario.to_owned(),
+            seed,
+            runs: [runs.start, runs.end],
+            params: params.as_map().clone(),
+            shard,
+        }
+    }
+
+    /// The run range.
+    pub(crate) fn range(&self) -> Range<u64> {
+        self.runs[0]..self.runs[1]
+    }
+}
+
+/// Every later line (the record kept as its JSON text).
 #[derive(Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-struct Line {
-    run: u64,
-    record: Box<serde_json::value::RawValue>,
+pub(crate) struct Line {
+    pub(crate) run: u64,
+    pub(crate) record: Box<serde_json::value::RawValue>,
 }
 
 /// The per-run file's name for runs `A..B`: `runs/<A>-<B>.jsonl` under `dir`.
@@ -44,19 +92,21 @@ pub(crate) fn runs_file(dir: &Path, runs: &Range<u64>) -> PathBuf {
         .join(format!("{}-{}.jsonl", runs.start, runs.end))
 }
 
+fn header_line(header: &Header) -> Result<String, CliError> {
+    let mut s = serde_json::to_string(header)
+        .map_err(|e| CliError::Usage(format!("per-run header: {e}")))?;
+    s.push('\n');
+    Ok(s)
+}
+
 /// The text of a per-run file: header and one line per record (`records[i]` is run
-/// `runs.start + i`).
+/// `header.runs[0] + i`).
 ///
 /// # Errors
 /// [`CliError::Usage`] if the record count does not match the range (a framework bug,
 /// reported rather than writing a wrong file).
-pub(crate) fn runs_text(
-    scenario: &str,
-    seed: u64,
-    runs: &Range<u64>,
-    params: &Params,
-    records: &[String],
-) -> Result<String, CliError> {
+pub(crate) fn runs_text(header: &Header, records: &[String]) -> Result<String, CliError> {
+    let runs = header.range();
     if records.len() as u64 != runs.end - runs.start {
         return Err(CliError::Usage(format!(
             "{} records for runs {}..{}",
@@ -65,209 +115,53 @@ pub(crate) fn runs_text(
             runs.end
         )));
     }
-    let header = Header {
-        argus_runs: RUNS_FORMAT,
-        scenario: scenario.to_owned(),
-        seed,
-        runs: [runs.start, runs.end],
-        params: params.as_map().clone(),
-    };
-    let to_err = |e: serde_json::Error| CliError::Usage(format!("per-run file: {e}"));
-    let mut s = serde_json::to_string(&header).map_err(to_err)?;
-    s.push('\n');
-    for (run, rec) in runs.clone().zip(records) {
+    let mut s = header_line(header)?;
+    for (run, rec) in runs.zip(records) {
         s.push_str(&format!("{{\"run\":{run},\"record\":{rec}}}\n"));
     }
     Ok(s)
 }
 
-/// The union of the per-run files found in `dirs`, checked and ordered.
-#[derive(Debug)]
-pub(crate) struct Merged {
-    /// The common base seed.
-    pub(crate) seed: u64,
-    /// The run indices covered, `start..end` without gap.
-    pub(crate) runs: Range<u64>,
-    /// The common parameters, validated against the scenario's specs.
-    pub(crate) params: Params,
-    /// The records in run order.
-    pub(crate) records: Vec<RecordText>,
-    /// The files read.
-    pub(crate) files: Vec<PathBuf>,
-}
-
-/// Reads every `runs/*.jsonl` in `dirs` for scenario `scenario` and checks that they share
-/// the seed and parameters, hold each run once, and together cover `A..B` without gap.
+/// Writes the per-run file of `header` at `path`, its run lines copied from `lines`
+/// (already checked, in run order) as they come: the merged file is never held whole.
+/// Atomic like [`crate::output::write_atomic`]: a temporary sibling, then a rename.
 ///
 /// # Errors
-/// [`CliError::Input`] naming the file, line and field of a bad header or line, a
-/// second copy of a run, another scenario, seed or parameter set; [`CliError::Usage`]
-/// for a directory without per-run files or a gap in the runs; [`CliError::Io`].
-pub(crate) fn read_dirs(
-    scenario: &str,
-    specs: &[ParamSpec],
-    dirs: &[PathBuf],
-) -> Result<Merged, CliError> {
-    let mut files = Vec::new();
-    for d in dirs {
-        let rd = d.join("runs");
-        let entries = std::fs::read_dir(&rd).map_err(|e| CliError::io(&rd, e))?;
-        let mut found: Vec<PathBuf> = entries
-            .filter_map(Result::ok)
-            .map(|e| e.path())
-            .filter(|p| p.extension().is_some_and(|x| x == "jsonl"))
-            .collect();
-        if found.is_empty() {
-            return Err(CliError::Usage(format!(
-                "{}: no per-run file (runs/<A>-<B>.jsonl, written by `argus run`)",
-                d.display()
-            )));
+/// [`CliError::Io`] for the directory, the temporary file or the rename; the first error
+/// of `lines`.
+pub(crate) fn write_streamed(
+    path: &Path,
+    header: &Header,
+    lines: &mut dyn Iterator<Item = Result<String, CliError>>,
+) -> Result<(), CliError> {
+    let dir = path
+        .parent()
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, e))?;
+    let name = path
+        .file_name()
+        .map_or_else(|| "runs".into(), |n| n.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+    let result = (|| -> Result<(), CliError> {
+        let f = std::fs::File::create(&tmp).map_err(|e| CliError::io(&tmp, e))?;
+        let mut w = std::io::BufWriter::new(f);
+        let io = |e| CliError::io(&tmp, e);
+        w.write_all(header_line(header)?.as_bytes()).map_err(io)?;
+        for l in lines {
+            w.write_all(l?.as_bytes()).map_err(io)?;
+            w.write_all(b"\n").map_err(io)?;
         }
-        found.sort();
-        files.extend(found);
+        let f = w
+            .into_inner()
+            .map_err(|e| CliError::io(&tmp, e.into_error()))?;
+        f.sync_all().map_err(io)?;
+        std::fs::rename(&tmp, path).map_err(|e| CliError::io(path, e))
+    })();
+    if result.is_err() {
+        // Best effort: do not leave the temporary behind.
+        let _ = std::fs::remove_file(&tmp);
     }
-    // (seed, params, file) of the first file, to compare the others with.
-    let mut first: Option<(u64, BTreeMap<String, f64>, PathBuf)> = None;
-    let mut by_run: BTreeMap<u64, RecordText> = BTreeMap::new();
-    for f in &files {
-        let text = std::fs::read_to_string(f).map_err(|e| CliError::io(f, e))?;
-        let mut lines = text.lines().enumerate();
-        let (_, head) = lines
-            .next()
-            .ok_or_else(|| CliError::input(f, Some(1), None, "empty per-run file"))?;
-        let h: Header = serde_json::from_str(head)
-            .map_err(|e| CliError::input(f, Some(1), None, format!("not a per-run header: {e}")))?;
-        if h.argus_runs != RUNS_FORMAT {
-            return Err(CliError::input(
-                f,
-                Some(1),
-                Some("argus_runs"),
-                format!(
-                    "layout version {} (this argus reads {RUNS_FORMAT})",
-                    h.argus_runs
-                ),
-            ));
-        }
-        if h.scenario != scenario {
-            return Err(CliError::input(
-                f,
-                Some(1),
-                Some("scenario"),
-                format!("runs of '{}', not '{scenario}'", h.scenario),
-            ));
-        }
-        match &first {
-            None => first = Some((h.seed, h.params.clone(), f.clone())),
-            Some((seed, params, f0)) => {
-                if *seed != h.seed {
-                    return Err(CliError::input(
-                        f,
-                        Some(1),
-                        Some("seed"),
-                        format!("seed {} differs from {} in {}", h.seed, seed, f0.display()),
-                    ));
-                }
-                let same = params.len() == h.params.len()
-                    && params
-                        .iter()
-                        .zip(h.params.iter())
-                        .all(|((k0, v0), (k1, v1))| k0 == k1 && v0.to_bits() == v1.to_bits());
-                if !same {
-                    return Err(CliError::input(
-                        f,
-                        Some(1),
-                        Some("params"),
-                        format!("parameters differ from those in {}", f0.display()),
-                    ));
-                }
-            }
-        }
-        let range = h.runs[0]..h.runs[1];
-        let mut count = 0u64;
-        for (i, l) in lines {
-            let line = i as u64 + 1;
-            if l.trim().is_empty() {
-                continue;
-            }
-            let rec: Line = serde_json::from_str(l).map_err(|e| {
-                CliError::input(f, Some(line), None, format!("not a run line: {e}"))
-            })?;
-            if !range.contains(&rec.run) {
-                return Err(CliError::input(
-                    f,
-                    Some(line),
-                    Some("run"),
-                    format!(
-                        "run {} outside the header's {}..{}",
-                        rec.run, range.start, range.end
-                    ),
-                ));
-            }
-            let text = RecordText {
-                json: rec.record.get().to_owned(),
-                file: f.clone(),
-                line,
-            };
-            if let Some(prev) = by_run.insert(rec.run, text) {
-                return Err(CliError::input(
-                    f,
-                    Some(line),
-                    Some("run"),
-                    format!(
-                        "run {} also in {}:{} (each run must come once)",
-                        rec.run,
-                        prev.file.display(),
-                        prev.line
-                    ),
-                ));
-            }
-            count += 1;
-        }
-        if count != range.end.saturating_sub(range.start) {
-            return Err(CliError::input(
-                f,
-                None,
-                Some("runs"),
-                format!(
-                    "{count} run lines for runs {}..{} (truncated file?)",
-                    range.start, range.end
-                ),
-            ));
-        }
-    }
-    let Some((seed, params, _)) = first else {
-        return Err(CliError::Usage("no per-run file given".into()));
-    };
-    let (Some(&start), Some(&last)) = (by_run.keys().next(), by_run.keys().next_back()) else {
-        return Err(CliError::Usage("the per-run files hold no run".into()));
-    };
-    let end = last + 1;
-    if end - start != by_run.len() as u64 {
-        let missing: Vec<String> = (start..end)
-            .filter(|r| !by_run.contains_key(r))
-            .take(5)
-            .map(|r| r.to_string())
-            .collect();
-        return Err(CliError::Usage(format!(
-            "runs {start}..{end} have gaps (missing run {} …): merge only complete ranges",
-            missing.join(", ")
-        )));
-    }
-    // Revalidate the parameters against the scenario (the file may have been edited).
-    let settings: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
-    let params = Params::from_settings(specs, &settings)?;
-    if params.as_map().len() != settings.len() {
-        return Err(CliError::Usage(
-            "the per-run files lack some of the scenario's parameters".into(),
-        ));
-    }
-    Ok(Merged {
-        seed,
-        runs: start..end,
-        params,
-        records: by_run.into_values().collect(),
-        files,
-    })
+    result
 }
 
 #[cfg(test)]
@@ -275,47 +169,15 @@ mod tests {
     use super::*;
 
     #[test]
-    fn per_run_file_round_trips_every_f64_exactly() {
-        // Values whose shortest decimal form needs care when parsed back: serde_json
-        // without `float_roundtrip` may miss them by one ulp.
-        let tricky: Vec<f64> = vec![
-            0.1 + 0.2,
-            1.0 / 3.0,
-            2.225_073_858_507_201e-308,
-            5e-324,
-            f64::MAX,
-            -1.797_693_134_862_315_7e308,
-            9_007_199_254_740_993.0,
-            20.946_123_456_789_012,
-        ];
-        let records: Vec<String> = tricky
-            .iter()
-            .map(|v| serde_json::to_string(&vec![*v]).unwrap())
-            .collect();
-        let runs = 3..3 + tricky.len() as u64;
-        let params = Params::from_settings(&[], &[]).unwrap();
-        let text = runs_text("t", 7, &runs, &params, &records).unwrap();
-        let dir = tempfile::tempdir().unwrap();
-        std::fs::create_dir_all(dir.path().join("runs")).unwrap();
-        std::fs::write(runs_file(dir.path(), &runs), text).unwrap();
-        let m = read_dirs("t", &[], &[dir.path().to_path_buf()]).unwrap();
-        assert_eq!(m.seed, 7);
-        assert_eq!(m.runs, runs);
-        for (rec, want) in m.records.iter().zip(&tricky) {
-            let got: Vec<f64> = serde_json::from_str(&rec.json).unwrap();
-            assert_eq!(got[0].to_bits(), want.to_bits(), "{want:e}");
-        }
-        // Another scenario's name is refused, naming the header field.
-        let e = read_dirs("other", &[], &[dir.path().to_path_buf()]).unwrap_err();
-        assert!(
-            matches!(&e, CliError::Input { at, .. } if at.line == Some(1) && at.field.as_deref() == Some("scenario")),
-            "{e}"
-        );
-    }
-
-    #[test]
     fn record_count_must_match_range() {
         let params = Params::from_settings(&[], &[]).unwrap();
-        assert!(runs_text("t", 1, &(0..3), &params, &["1".into(), "2".into()]).is_err());
+        let h = Header::new("t", 1, &(0..3), &params, None);
+        assert!(runs_text(&h, &["1".into(), "2".into()]).is_err());
+        let text = runs_text(&h, &["1".into(), "2".into(), "3".into()]).unwrap();
+        assert_eq!(text.lines().count(), 4, "{text}");
+        assert!(
+            text.lines().nth(3).unwrap().starts_with("{\"run\":2,"),
+            "{text}"
+        );
     }
 }

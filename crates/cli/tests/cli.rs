@@ -411,9 +411,17 @@ fn merge_rejects_overlap_gap_and_mismatch() {
         )
     };
     let (code, e) = err(&["merge", "cv-polar", "a", "b", "--out", "m"]);
-    assert_error(code, &e, &["2-6.jsonl:2", "field 'run'", "run 2 also in"]);
+    assert_error(
+        code,
+        &e,
+        &["runs 2..4 are in both", "0-4.jsonl", "2-6.jsonl"],
+    );
     let (code, e) = err(&["merge", "cv-polar", "a", "c", "--out", "m"]);
-    assert_error(code, &e, &["gaps", "missing run 4"]);
+    assert_error(
+        code,
+        &e,
+        &["runs 4..5 are in no per-run file", "re-submit index 4..5"],
+    );
     let (code, e) = err(&["merge", "cv-polar", "a", "s2", "--out", "m"]);
     assert_error(code, &e, &["4-8.jsonl:1", "field 'seed'"]);
     let (code, e) = err(&["merge", "cv-polar", "a", "--out", "a"]);

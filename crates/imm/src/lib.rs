@@ -62,7 +62,7 @@ mod tests;
 
 pub use aircraft::{
     AircraftEkf, AircraftEstimate, AircraftImm, AircraftPrediction, AircraftRadar, AircraftTuning,
-    AircraftUpdate, Augmentation, two_point_start,
+    AircraftUpdate, Augmentation, start_from_cv, two_point_start,
 };
 pub use difference::{DifferenceEstimate, DifferenceNoiseImm};
 pub use embed::Embedded;

@@ -71,8 +71,9 @@ pub fn run(
     match scenario.splittable() {
         Some(sp) => {
             let records = sp.records(&ctx)?;
-            let texts = in_process(records.clone(), &ctx.runs);
-            let report = sp.reduce_records(&ctx.params, &texts)?;
+            let count = ctx.runs.end - ctx.runs.start;
+            let report =
+                sp.reduce_records(&ctx.params, count, &mut in_process(&records, &ctx.runs))?;
             Ok(RunOutput {
                 report,
                 records: Some(records),
@@ -85,8 +86,9 @@ pub fn run(
     }
 }
 
-/// The report of the records of split runs (in run order, as `RunOutput::records` gave
-/// them, with where each was read from).
+/// The report of the `count` records of split runs, streamed in run order (as
+/// `RunOutput::records` gave them, with where each was read from): the records are
+/// parsed one at a time.
 ///
 /// # Errors
 /// [`ScenarioError::NotSplittable`], [`ScenarioError::Record`] for a record that does not
@@ -94,12 +96,13 @@ pub fn run(
 pub fn merge(
     scenario: &dyn Scenario,
     params: &Params,
-    records: &[RecordText],
+    count: u64,
+    records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
 ) -> Result<Report, ScenarioError> {
     let sp = scenario
         .splittable()
         .ok_or_else(|| ScenarioError::NotSplittable {
             scenario: scenario.name(),
         })?;
-    sp.reduce_records(params, records)
+    sp.reduce_records(params, count, records)
 }

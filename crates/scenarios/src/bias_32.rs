@@ -8,17 +8,17 @@
 //! `summary.json` and `sweep.csv`). Extra sensors sit on the x axis at 10 km spacing with
 //! offsets `s/S` s; extra targets continue the 8-column grid upward (rows 10 km apart).
 
+mod campaign;
 pub mod experiment;
 
 use argus_core_math::Vector;
 use argus_registration::{Initiation, Linearization};
 use argus_sim::{
     Bias, KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
-    monte_carlo,
 };
-use experiment::{ScenarioConfig, Summary, run};
-use rand_distr::{Distribution, StandardNormal};
+use experiment::{ScenarioConfig, Summary};
 
+use crate::campaign::{Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -63,82 +63,6 @@ const COMPONENTS: [&str; 4] = [
     "azimuth scale",
 ];
 const UNITS: [&str; 4] = ["m", "rad", "-", "-"];
-
-/// The sweep over every (sensors, targets) combination: per combination one campaign of
-/// `ctx.runs`, its wall time per plot and its final bias RMSE.
-fn sweep(ctx: &RunContext, sensors: &[f64], targets: &[f64]) -> Result<Report, ScenarioError> {
-    let mut rows = Vec::new();
-    let mut table = Vec::new();
-    let progress = &ctx.progress;
-    for &s_count in sensors {
-        for &n in targets {
-            let (s_count, n) = (s_count as usize, n as usize);
-            let c = config(&ctx.params, s_count, n)?;
-            let started = std::time::Instant::now();
-            let one = |_: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<_, ScenarioError> {
-                Ok(run(&c, &mut || StandardNormal.sample(rng))?)
-            };
-            let recs = monte_carlo(ctx.seed, ctx.runs.clone(), one, || progress.tick())?;
-            let elapsed = started.elapsed().as_secs_f64();
-            let plots: usize = recs.iter().map(|r| r.plots).sum();
-            let sum = Summary::from_runs(&recs, s_count)?;
-            let cost = elapsed / plots.max(1) as f64 * 1e6;
-            let tag = format!("s{s_count}_n{n}");
-            let what = format!("S={s_count}, N={n}");
-            let note = format!("{} runs, {plots} plots, t = {} s", sum.runs, c.duration);
-            rows.push(
-                Row::new(
-                    format!("sweep_{tag}_cost_per_plot"),
-                    format!("wall time per plot, {what}"),
-                    cost,
-                    "us",
-                )
-                .note(note.clone()),
-            );
-            let last = |v: &Vec<[f64; 4]>| v.last().copied().unwrap_or([f64::NAN; 4]);
-            let (p, e) = (last(&sum.proposed_rmse), last(&sum.exx_rmse));
-            for (k, name) in COMPONENTS.iter().enumerate() {
-                rows.push(
-                    Row::new(
-                        format!("sweep_{tag}_{}_rmse", name.replace(' ', "_")),
-                        format!("final {name} RMSE, proposed, {what}"),
-                        p[k],
-                        UNITS[k],
-                    )
-                    .note(note.clone()),
-                );
-            }
-            let mut line = vec![s_count as f64, n as f64, plots as f64, cost];
-            line.extend(p);
-            line.extend(e);
-            table.push(line);
-        }
-    }
-    progress.finish();
-    let mut columns: Vec<String> = ["sensors", "targets", "plots", "us_per_plot"]
-        .iter()
-        .map(|x| (*x).to_owned())
-        .collect();
-    for m in ["proposed", "exx"] {
-        for n in ["br", "bth", "er", "eth"] {
-            columns.push(format!("{m}_{n}_final"));
-        }
-    }
-    Ok(Report {
-        rows,
-        series: vec![Series {
-            name: "sweep".into(),
-            columns,
-            rows: table,
-        }],
-        figures: Vec::new(),
-        notes: vec![
-            "Sweep: one campaign per (sensors, targets); sensors at (10 km·s, 0) with offsets s/S s, targets on the 8-column grid continued upward (rows 10 km apart).".to_owned(),
-            "Wall time per plot includes the local filters, the pseudo-measurement update and EXX (exx=1); runs go in parallel, so it is total wall time over all plots.".to_owned(),
-            "summary.json `params` holds the first value of each list; sweep.csv lists every combination (EXX columns NaN when exx=0).".to_owned(),
-        ],
-    })
-}
 
 impl Scenario for Bias32 {
     fn name(&self) -> &'static str {
@@ -245,307 +169,318 @@ impl Scenario for Bias32 {
         Ok((truth, specs))
     }
 
-    #[allow(clippy::too_many_lines)]
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let (sensors, targets) = (ctx.params.list("sensors")?, ctx.params.list("targets")?);
-        if sensors.len() > 1 || targets.len() > 1 {
-            return sweep(ctx, &sensors, &targets);
-        }
-        let c = single_config(&ctx.params)?;
-        let started = std::time::Instant::now();
-        let one = |_: u64, rng: &mut argus_sim::ChaCha8Rng| -> Result<_, ScenarioError> {
-            Ok(run(&c, &mut || StandardNormal.sample(rng))?)
-        };
-        let progress = &ctx.progress;
-        let recs = monte_carlo(ctx.seed, ctx.runs.clone(), one, || progress.tick())?;
-        progress.finish();
-        let elapsed = started.elapsed().as_secs_f64();
-        let plots: usize = recs.iter().map(|r| r.plots).sum();
-        let s = Summary::from_runs(&recs, c.sensors.len())?;
-        let end = s.times.len().saturating_sub(1);
-        let at = |t: f64| s.index_at(t);
-        let (comp, units) = (COMPONENTS, UNITS);
-        let mut rows = Vec::new();
-        for (k, name) in comp.iter().enumerate() {
-            for (tag, t) in [
-                ("10s", 10.0),
-                ("100s", 100.0),
-                ("final", s.times.get(end).copied().unwrap_or(0.0)),
-            ] {
-                let i = at(t);
-                let key = name.replace(' ', "_");
-                let p = s.proposed_rmse.get(i).map_or(f64::NAN, |v| v[k]);
+        run_whole(self, ctx)
+    }
+
+    fn splittable(&self) -> Option<&dyn Splittable> {
+        Some(self)
+    }
+}
+
+/// The report of one campaign of configuration `c` from its runs' records, `elapsed` the
+/// runs' summed computing time (s).
+///
+/// # Errors
+/// The summary's errors.
+#[allow(clippy::too_many_lines)]
+fn single_report(
+    c: &ScenarioConfig,
+    recs: &[experiment::RunRecord],
+    elapsed: f64,
+) -> Result<Report, ScenarioError> {
+    let plots: usize = recs.iter().map(|r| r.plots).sum();
+    let s = Summary::from_runs(recs, c.sensors.len())?;
+    let end = s.times.len().saturating_sub(1);
+    let at = |t: f64| s.index_at(t);
+    let (comp, units) = (COMPONENTS, UNITS);
+    let mut rows = Vec::new();
+    for (k, name) in comp.iter().enumerate() {
+        for (tag, t) in [
+            ("10s", 10.0),
+            ("100s", 100.0),
+            ("final", s.times.get(end).copied().unwrap_or(0.0)),
+        ] {
+            let i = at(t);
+            let key = name.replace(' ', "_");
+            let p = s.proposed_rmse.get(i).map_or(f64::NAN, |v| v[k]);
+            rows.push(
+                Row::new(
+                    format!("proposed_{key}_{tag}"),
+                    format!("{name} RMSE, proposed, t={t:.0} s"),
+                    p,
+                    units[k],
+                )
+                .paper_text("Figs. 3-6: below EXX")
+                .note(format!("{} runs", s.runs)),
+            );
+            if let Some(v) = s.proposed_predicted.get(i) {
                 rows.push(
                     Row::new(
-                        format!("proposed_{key}_{tag}"),
-                        format!("{name} RMSE, proposed, t={t:.0} s"),
-                        p,
+                        format!("proposed_{key}_{tag}_predicted"),
+                        format!(
+                            "{name} RMSE the proposed estimator predicts (sqrt mean Σ), t={t:.0} s"
+                        ),
+                        v[k],
                         units[k],
                     )
-                    .paper_text("Figs. 3-6: below EXX")
+                    .note("its own covariance; over-confident (see ANEES)"),
+                );
+            }
+            if let Some(e) = s.exx_rmse.get(i) {
+                rows.push(
+                    Row::new(
+                        format!("exx_{key}_{tag}"),
+                        format!("{name} RMSE, EXX, t={t:.0} s"),
+                        e[k],
+                        units[k],
+                    )
+                    .paper_text("Figs. 3-6")
                     .note(format!("{} runs", s.runs)),
                 );
-                if let Some(v) = s.proposed_predicted.get(i) {
-                    rows.push(
-                        Row::new(
-                            format!("proposed_{key}_{tag}_predicted"),
-                            format!("{name} RMSE the proposed estimator predicts (sqrt mean Σ), t={t:.0} s"),
-                            v[k],
-                            units[k],
-                        )
-                        .note("its own covariance; over-confident (see ANEES)"),
-                    );
-                }
-                if let Some(e) = s.exx_rmse.get(i) {
-                    rows.push(
-                        Row::new(
-                            format!("exx_{key}_{tag}"),
-                            format!("{name} RMSE, EXX, t={t:.0} s"),
-                            e[k],
-                            units[k],
-                        )
-                        .paper_text("Figs. 3-6")
-                        .note(format!("{} runs", s.runs)),
-                    );
-                }
             }
         }
-        let nees_note = format!("expected {} (chi-square dof)", s.bias_dim);
+    }
+    let nees_note = format!("expected {} (chi-square dof)", s.bias_dim);
+    rows.push(
+        Row::new(
+            "proposed_anees_final",
+            "bias ANEES, proposed, final",
+            s.proposed_anees.get(end).copied().unwrap_or(f64::NAN),
+            "-",
+        )
+        .paper(s.bias_dim as f64)
+        .paper_text("consistent")
+        .note(nees_note.clone()),
+    );
+    if let Some(e) = s.exx_anees.get(end) {
         rows.push(
-            Row::new(
-                "proposed_anees_final",
-                "bias ANEES, proposed, final",
-                s.proposed_anees.get(end).copied().unwrap_or(f64::NAN),
-                "-",
-            )
-            .paper(s.bias_dim as f64)
-            .paper_text("consistent")
-            .note(nees_note.clone()),
+            Row::new("exx_anees_final", "bias ANEES, EXX, final", *e, "-")
+                .paper(s.bias_dim as f64)
+                .paper_text("consistent")
+                .note(nees_note),
         );
-        if let Some(e) = s.exx_anees.get(end) {
-            rows.push(
-                Row::new("exx_anees_final", "bias ANEES, EXX, final", *e, "-")
-                    .paper(s.bias_dim as f64)
-                    .paper_text("consistent")
-                    .note(nees_note),
-            );
+    }
+    for tr in &s.tracks {
+        let id = tr.target + 1;
+        // The second half (steady state) and the first 20 s (the transient in which the
+        // bias-free start is pulled to the biased plots).
+        let n = tr.pos_biased.len();
+        let early = tr.times.iter().take_while(|&&t| t <= 20.0).count();
+        let mean = |v: &Vec<f64>, a: usize, b: usize| {
+            let b = b.min(v.len());
+            v.get(a..b)
+                .map_or(f64::NAN, |w| w.iter().sum::<f64>() / w.len().max(1) as f64)
+        };
+        for (what, b, cmp, rf, unit) in [
+            (
+                "position",
+                &tr.pos_biased,
+                &tr.pos_compensated,
+                &tr.pos_reference,
+                "m",
+            ),
+            (
+                "velocity",
+                &tr.vel_biased,
+                &tr.vel_compensated,
+                &tr.vel_reference,
+                "m/s",
+            ),
+        ] {
+            for (win, lo, hi, wnote) in [
+                ("", n / 2, n, "mean over the second half of the run"),
+                ("_0_20s", 0, early, "mean over 0-20 s (transient)"),
+            ] {
+                let (vb, vc) = (mean(b, lo, hi), mean(cmp, lo, hi));
+                rows.push(
+                    Row::new(
+                        format!("track{id}_{what}_biased{win}"),
+                        format!("track {id} (sensor 1) {what} RMSE, no compensation"),
+                        vb,
+                        unit,
+                    )
+                    .paper_text("Figs. 8-11")
+                    .note(wnote),
+                );
+                rows.push(
+                    Row::new(
+                        format!("track{id}_{what}_compensated{win}"),
+                        format!("track {id} (sensor 1) {what} RMSE, compensated"),
+                        vc,
+                        unit,
+                    )
+                    .paper_text("Figs. 8-11: lower")
+                    .note(format!(
+                        "{wnote}; reduction {:.1} %",
+                        100.0 * (1.0 - vc / vb)
+                    )),
+                );
+                rows.push(
+                    Row::new(
+                        format!("track{id}_{what}_reference{win}"),
+                        format!("track {id} (sensor 1) {what} RMSE, bias-free plots"),
+                        mean(rf, lo, hi),
+                        unit,
+                    )
+                    .note(format!("{wnote}; same filter and noise without bias")),
+                );
+            }
         }
-        for tr in &s.tracks {
-            let id = tr.target + 1;
-            // The second half (steady state) and the first 20 s (the transient in which the
-            // bias-free start is pulled to the biased plots).
-            let n = tr.pos_biased.len();
-            let early = tr.times.iter().take_while(|&&t| t <= 20.0).count();
-            let mean = |v: &Vec<f64>, a: usize, b: usize| {
-                let b = b.min(v.len());
-                v.get(a..b)
-                    .map_or(f64::NAN, |w| w.iter().sum::<f64>() / w.len().max(1) as f64)
-            };
-            for (what, b, cmp, rf, unit) in [
+    }
+    rows.push(
+        Row::new(
+            "cost_per_plot",
+            "run time per plot (each run's wall time, summed over the runs)",
+            elapsed / plots.max(1) as f64 * 1e6,
+            "us",
+        )
+        .note(format!(
+            "{} sensors, {} targets, {plots} plots",
+            c.sensors.len(),
+            c.targets.len()
+        )),
+    );
+
+    let mut cols = vec!["t".to_owned()];
+    for m in ["proposed", "exx"] {
+        for n in ["br", "bth", "er", "eth"] {
+            cols.push(format!("{m}_{n}"));
+        }
+        cols.push(format!("{m}_anees"));
+    }
+    let bias_rows = (0..s.times.len())
+        .map(|i| {
+            let mut r = vec![s.times.get(i).copied().unwrap_or(f64::NAN)];
+            for (rm, an) in [
+                (&s.proposed_rmse, &s.proposed_anees),
+                (&s.exx_rmse, &s.exx_anees),
+            ] {
+                r.extend(rm.get(i).copied().unwrap_or([f64::NAN; 4]));
+                r.push(an.get(i).copied().unwrap_or(f64::NAN));
+            }
+            r
+        })
+        .collect();
+    let mut series = vec![Series {
+        name: "bias_rmse".into(),
+        columns: cols,
+        rows: bias_rows,
+    }];
+    let mut figures = Vec::new();
+    for (k, name) in comp.iter().enumerate() {
+        let line = |label: &str, v: &Vec<[f64; 4]>| Line {
+            label: label.into(),
+            points: s.times.iter().zip(v).map(|(t, x)| (*t, x[k])).collect(),
+            style: LineStyle::Solid,
+        };
+        figures.push(Figure {
+            name: format!("fig{}_{}", 3 + k, name.replace(' ', "_")),
+            title: format!("{name} bias RMSE (paper Fig. {}), {} runs", 3 + k, s.runs),
+            x_label: "time (s)".into(),
+            y_label: format!("RMSE ({})", units[k]),
+            lines: vec![line("proposed", &s.proposed_rmse), line("EXX", &s.exx_rmse)],
+        });
+    }
+    for (j, tr) in s.tracks.iter().enumerate() {
+        let id = tr.target + 1;
+        series.push(Series {
+            name: format!("track{id}"),
+            columns: [
+                "t",
+                "pos_biased",
+                "pos_comp",
+                "pos_ref",
+                "vel_biased",
+                "vel_comp",
+                "vel_ref",
+                "anees_comp",
+            ]
+            .iter()
+            .map(|x| (*x).to_owned())
+            .collect(),
+            rows: (0..tr.times.len())
+                .map(|i| {
+                    [
+                        &tr.times,
+                        &tr.pos_biased,
+                        &tr.pos_compensated,
+                        &tr.pos_reference,
+                        &tr.vel_biased,
+                        &tr.vel_compensated,
+                        &tr.vel_reference,
+                        &tr.anees_compensated,
+                    ]
+                    .iter()
+                    .map(|v| v.get(i).copied().unwrap_or(f64::NAN))
+                    .collect()
+                })
+                .collect(),
+        });
+        for (w, (b, cmp, rf, unit)) in [
+            (
+                "position",
+                (&tr.pos_biased, &tr.pos_compensated, &tr.pos_reference, "m"),
+            ),
+            (
+                "velocity",
                 (
-                    "position",
-                    &tr.pos_biased,
-                    &tr.pos_compensated,
-                    &tr.pos_reference,
-                    "m",
-                ),
-                (
-                    "velocity",
                     &tr.vel_biased,
                     &tr.vel_compensated,
                     &tr.vel_reference,
                     "m/s",
                 ),
-            ] {
-                for (win, lo, hi, wnote) in [
-                    ("", n / 2, n, "mean over the second half of the run"),
-                    ("_0_20s", 0, early, "mean over 0-20 s (transient)"),
-                ] {
-                    let (vb, vc) = (mean(b, lo, hi), mean(cmp, lo, hi));
-                    rows.push(
-                        Row::new(
-                            format!("track{id}_{what}_biased{win}"),
-                            format!("track {id} (sensor 1) {what} RMSE, no compensation"),
-                            vb,
-                            unit,
-                        )
-                        .paper_text("Figs. 8-11")
-                        .note(wnote),
-                    );
-                    rows.push(
-                        Row::new(
-                            format!("track{id}_{what}_compensated{win}"),
-                            format!("track {id} (sensor 1) {what} RMSE, compensated"),
-                            vc,
-                            unit,
-                        )
-                        .paper_text("Figs. 8-11: lower")
-                        .note(format!(
-                            "{wnote}; reduction {:.1} %",
-                            100.0 * (1.0 - vc / vb)
-                        )),
-                    );
-                    rows.push(
-                        Row::new(
-                            format!("track{id}_{what}_reference{win}"),
-                            format!("track {id} (sensor 1) {what} RMSE, bias-free plots"),
-                            mean(rf, lo, hi),
-                            unit,
-                        )
-                        .note(format!("{wnote}; same filter and noise without bias")),
-                    );
-                }
-            }
-        }
-        rows.push(
-            Row::new(
-                "cost_per_plot",
-                "wall time per plot (all threads)",
-                elapsed / plots.max(1) as f64 * 1e6,
-                "us",
-            )
-            .note(format!(
-                "{} sensors, {} targets, {plots} plots",
-                c.sensors.len(),
-                c.targets.len()
-            )),
-        );
-
-        let mut cols = vec!["t".to_owned()];
-        for m in ["proposed", "exx"] {
-            for n in ["br", "bth", "er", "eth"] {
-                cols.push(format!("{m}_{n}"));
-            }
-            cols.push(format!("{m}_anees"));
-        }
-        let bias_rows = (0..s.times.len())
-            .map(|i| {
-                let mut r = vec![s.times.get(i).copied().unwrap_or(f64::NAN)];
-                for (rm, an) in [
-                    (&s.proposed_rmse, &s.proposed_anees),
-                    (&s.exx_rmse, &s.exx_anees),
-                ] {
-                    r.extend(rm.get(i).copied().unwrap_or([f64::NAN; 4]));
-                    r.push(an.get(i).copied().unwrap_or(f64::NAN));
-                }
-                r
-            })
-            .collect();
-        let mut series = vec![Series {
-            name: "bias_rmse".into(),
-            columns: cols,
-            rows: bias_rows,
-        }];
-        let mut figures = Vec::new();
-        for (k, name) in comp.iter().enumerate() {
-            let line = |label: &str, v: &Vec<[f64; 4]>| Line {
-                label: label.into(),
-                points: s.times.iter().zip(v).map(|(t, x)| (*t, x[k])).collect(),
-                style: LineStyle::Solid,
+            ),
+        ] {
+            let pts = |v: &Vec<f64>| {
+                tr.times
+                    .iter()
+                    .zip(v)
+                    .map(|(t, x)| (*t, *x))
+                    .collect::<Vec<_>>()
             };
+            let fig = 8 + 2 * j + usize::from(w == "velocity");
             figures.push(Figure {
-                name: format!("fig{}_{}", 3 + k, name.replace(' ', "_")),
-                title: format!("{name} bias RMSE (paper Fig. {}), {} runs", 3 + k, s.runs),
+                name: format!("fig{fig}_track{id}_{w}"),
+                title: format!("track {id} (sensor 1) {w} RMSE (paper Fig. {fig})"),
                 x_label: "time (s)".into(),
-                y_label: format!("RMSE ({})", units[k]),
-                lines: vec![line("proposed", &s.proposed_rmse), line("EXX", &s.exx_rmse)],
+                y_label: format!("RMSE ({unit})"),
+                lines: vec![
+                    Line {
+                        label: "no compensation".into(),
+                        points: pts(b),
+                        style: LineStyle::Solid,
+                    },
+                    Line {
+                        label: "compensated".into(),
+                        points: pts(cmp),
+                        style: LineStyle::Solid,
+                    },
+                    Line {
+                        label: "bias-free plots".into(),
+                        points: pts(rf),
+                        style: LineStyle::Bound,
+                    },
+                ],
             });
         }
-        for (j, tr) in s.tracks.iter().enumerate() {
-            let id = tr.target + 1;
-            series.push(Series {
-                name: format!("track{id}"),
-                columns: [
-                    "t",
-                    "pos_biased",
-                    "pos_comp",
-                    "pos_ref",
-                    "vel_biased",
-                    "vel_comp",
-                    "vel_ref",
-                    "anees_comp",
-                ]
-                .iter()
-                .map(|x| (*x).to_owned())
-                .collect(),
-                rows: (0..tr.times.len())
-                    .map(|i| {
-                        [
-                            &tr.times,
-                            &tr.pos_biased,
-                            &tr.pos_compensated,
-                            &tr.pos_reference,
-                            &tr.vel_biased,
-                            &tr.vel_compensated,
-                            &tr.vel_reference,
-                            &tr.anees_compensated,
-                        ]
-                        .iter()
-                        .map(|v| v.get(i).copied().unwrap_or(f64::NAN))
-                        .collect()
-                    })
-                    .collect(),
-            });
-            for (w, (b, cmp, rf, unit)) in [
-                (
-                    "position",
-                    (&tr.pos_biased, &tr.pos_compensated, &tr.pos_reference, "m"),
-                ),
-                (
-                    "velocity",
-                    (
-                        &tr.vel_biased,
-                        &tr.vel_compensated,
-                        &tr.vel_reference,
-                        "m/s",
-                    ),
-                ),
-            ] {
-                let pts = |v: &Vec<f64>| {
-                    tr.times
-                        .iter()
-                        .zip(v)
-                        .map(|(t, x)| (*t, *x))
-                        .collect::<Vec<_>>()
-                };
-                let fig = 8 + 2 * j + usize::from(w == "velocity");
-                figures.push(Figure {
-                    name: format!("fig{fig}_track{id}_{w}"),
-                    title: format!("track {id} (sensor 1) {w} RMSE (paper Fig. {fig})"),
-                    x_label: "time (s)".into(),
-                    y_label: format!("RMSE ({unit})"),
-                    lines: vec![
-                        Line {
-                            label: "no compensation".into(),
-                            points: pts(b),
-                            style: LineStyle::Solid,
-                        },
-                        Line {
-                            label: "compensated".into(),
-                            points: pts(cmp),
-                            style: LineStyle::Solid,
-                        },
-                        Line {
-                            label: "bias-free plots".into(),
-                            points: pts(rf),
-                            style: LineStyle::Bound,
-                        },
-                    ],
-                });
-            }
-        }
-        let notes = vec![
-            "Paper figures give curves only (no numbers): the paper column states the published claim.".to_owned(),
-            format!("Linearisation: {:?}; initiation: {:?}; truth is noise-free CV.", c.linearization, c.initiation),
-            "EXX slot rule: consecutive disjoint plot triples per target with at least two sensors.".to_owned(),
-        ];
-        Ok(Report {
-            rows,
-            series,
-            figures,
-            notes,
-        })
     }
+    let notes = vec![
+        "Paper figures give curves only (no numbers): the paper column states the published claim."
+            .to_owned(),
+        format!(
+            "Linearisation: {:?}; initiation: {:?}; truth is noise-free CV.",
+            c.linearization, c.initiation
+        ),
+        "EXX slot rule: consecutive disjoint plot triples per target with at least two sensors."
+            .to_owned(),
+    ];
+    Ok(Report {
+        rows,
+        series,
+        figures,
+        notes,
+    })
 }
 
 #[cfg(test)]

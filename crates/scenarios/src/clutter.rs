@@ -19,15 +19,21 @@ use argus_core_math::{Gaussian, Matrix, Vector, anees_interval};
 use argus_filters::{CovarianceForm, GaussianFilter, MeasurementPrediction};
 use argus_motion_models::{Cv2D, LinearMotionModel, MotionModel};
 use argus_sensors::CartesianPosition;
-use argus_sim::{ChaCha8Rng, Metrics, RunRecord, SensorSpec, StepRecord, Truth, monte_carlo};
+use argus_sim::{ChaCha8Rng, Metrics, RunRecord, SensorSpec, StepRecord, Truth};
 use rand_distr::{Distribution, Exp1, Poisson, StandardNormal, Uniform};
 
+use crate::campaign::{Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
-use crate::estimator::cv_kf;
+use crate::estimator::{CvKf, cv_kf};
 use crate::params::{ParamSpec, Params};
-use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
+use crate::report::Report;
 use crate::scenario::Scenario;
+
+mod report;
+mod split;
+
+use report::report;
 
 /// The `clutter` scenario.
 pub(crate) struct Clutter;
@@ -144,77 +150,154 @@ fn normal2(rng: &mut ChaCha8Rng) -> Vector<2> {
     Vector::<2>::new(StandardNormal.sample(rng), StandardNormal.sample(rng))
 }
 
-/// Runs one configuration over `runs` (seeded per run from `seed`).
-///
-/// # Errors
-/// Invalid parameters, a failed filter step.
-#[allow(non_snake_case, clippy::too_many_lines)]
-pub(crate) fn run_config(
-    c: &Config,
-    seed: u64,
-    runs: std::ops::Range<u64>,
-    tick: &(dyn Fn() + Sync),
-) -> Result<ConfigResult, ScenarioError> {
-    let (F, Q, sys) = system(c)?;
-    let kf = cv_kf(c.sigma_a)?;
-    let R = Matrix::<2, 2>::identity() * (c.sigma * c.sigma);
-    let radar = CartesianPosition::<4, 2>::cv(R)?;
-    let gate = Gate::from_threshold(c.gamma, 2).map_err(assoc)?;
-    let amp = AmplitudeModel::from_detection_probability(c.snr_db, c.p_d).map_err(assoc)?;
-    let nn = NearestNeighbour::new(gate);
-    let sn = StrongestNeighbour::new(gate);
-    let psn = Psn::new(gate, amp, c.density).map_err(assoc)?;
-    let pda = Pda::new(gate, c.p_d, ClutterModel::Poisson { density: c.density }).map_err(assoc)?;
-    let p0 = initial_cov(c);
-    let hyca = PerformancePredictor::new(
-        sys,
-        gate,
-        c.p_d,
-        c.density,
-        PredictedFilter::NearestNeighbour,
-    )
-    .map_err(assoc)?;
-    let pda_pred = PerformancePredictor::new(sys, gate, c.p_d, c.density, PredictedFilter::Pda)
-        .map_err(assoc)?;
-    let nn_pred = PerformancePredictor::new(
-        sys,
-        gate,
-        c.p_d,
-        c.density,
-        PredictedFilter::NearestNeighbourKalmanGain,
-    )
-    .map_err(assoc)?;
-    // The HYCA gain sequence (deterministic, the same for every run).
-    let mut hyca_steps: Vec<PredictionStep<4, 2>> = Vec::with_capacity(c.steps);
-    let mut p = p0;
-    for _ in 0..c.steps {
-        let s = hyca.step(&p).map_err(assoc)?;
-        p = s.posterior;
-        hyca_steps.push(s);
-    }
-    let H = Matrix::<2, 4>::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0);
-    let chol_q = Q.cholesky().map(|ch| ch.l()).unwrap_or_else(|| {
-        // DWNA Q is rank 2 per axis: use the exact square root Γσ.
-        let t = c.period;
-        let g = Vector::<2>::new(t * t / 2.0, t) * c.sigma_a;
-        let mut l = Matrix::<4, 4>::zeros();
-        l[(0, 0)] = g[0];
-        l[(1, 0)] = g[1];
-        l[(2, 2)] = g[0];
-        l[(3, 2)] = g[1];
-        l
-    });
-    let chol_p0 = p0
-        .cholesky()
-        .map(|ch| ch.l())
-        .unwrap_or_else(Matrix::<4, 4>::identity);
-    let n_clutter = Poisson::new(c.density * 4.0 * c.half_width * c.half_width)
-        .map_err(|e| distribution("clutter count", &e))?;
-    let unit = Uniform::new(-1.0, 1.0).map_err(|e| distribution("uniform", &e))?;
-    let d_lin = amp.snr();
-    let tau2 = amp.threshold() * amp.threshold();
+/// One configuration's filters, predictors and samplers, built once and shared by its
+/// runs.
+#[allow(non_snake_case)]
+pub(crate) struct Prepared {
+    c: Config,
+    F: Matrix<4, 4>,
+    kf: CvKf,
+    R: Matrix<2, 2>,
+    radar: CartesianPosition<4, 2>,
+    nn: NearestNeighbour,
+    sn: StrongestNeighbour,
+    psn: Psn,
+    pda: Pda,
+    p0: Matrix<4, 4>,
+    hyca: PerformancePredictor<4, 2>,
+    pda_pred: PerformancePredictor<4, 2>,
+    nn_pred: PerformancePredictor<4, 2>,
+    hyca_steps: Vec<PredictionStep<4, 2>>,
+    H: Matrix<2, 4>,
+    chol_q: Matrix<4, 4>,
+    chol_p0: Matrix<4, 4>,
+    n_clutter: Poisson<f64>,
+    unit: Uniform<f64>,
+    d_lin: f64,
+    tau2: f64,
+}
 
-    let one_run = |_: u64, rng: &mut ChaCha8Rng| -> Result<Vec<RunRecord>, ScenarioError> {
+impl Prepared {
+    /// Builds configuration `c`.
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    #[allow(non_snake_case)]
+    pub(crate) fn new(c: &Config) -> Result<Self, ScenarioError> {
+        let c = *c;
+        let (F, Q, sys) = system(&c)?;
+        let kf = cv_kf(c.sigma_a)?;
+        let R = Matrix::<2, 2>::identity() * (c.sigma * c.sigma);
+        let radar = CartesianPosition::<4, 2>::cv(R)?;
+        let gate = Gate::from_threshold(c.gamma, 2).map_err(assoc)?;
+        let amp = AmplitudeModel::from_detection_probability(c.snr_db, c.p_d).map_err(assoc)?;
+        let nn = NearestNeighbour::new(gate);
+        let sn = StrongestNeighbour::new(gate);
+        let psn = Psn::new(gate, amp, c.density).map_err(assoc)?;
+        let pda =
+            Pda::new(gate, c.p_d, ClutterModel::Poisson { density: c.density }).map_err(assoc)?;
+        let p0 = initial_cov(&c);
+        let hyca = PerformancePredictor::new(
+            sys,
+            gate,
+            c.p_d,
+            c.density,
+            PredictedFilter::NearestNeighbour,
+        )
+        .map_err(assoc)?;
+        let pda_pred = PerformancePredictor::new(sys, gate, c.p_d, c.density, PredictedFilter::Pda)
+            .map_err(assoc)?;
+        let nn_pred = PerformancePredictor::new(
+            sys,
+            gate,
+            c.p_d,
+            c.density,
+            PredictedFilter::NearestNeighbourKalmanGain,
+        )
+        .map_err(assoc)?;
+        // The HYCA gain sequence (deterministic, the same for every run).
+        let mut hyca_steps: Vec<PredictionStep<4, 2>> = Vec::with_capacity(c.steps);
+        let mut p = p0;
+        for _ in 0..c.steps {
+            let s = hyca.step(&p).map_err(assoc)?;
+            p = s.posterior;
+            hyca_steps.push(s);
+        }
+        let H = Matrix::<2, 4>::new(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0);
+        let chol_q = Q.cholesky().map(|ch| ch.l()).unwrap_or_else(|| {
+            // DWNA Q is rank 2 per axis: use the exact square root Γσ.
+            let t = c.period;
+            let g = Vector::<2>::new(t * t / 2.0, t) * c.sigma_a;
+            let mut l = Matrix::<4, 4>::zeros();
+            l[(0, 0)] = g[0];
+            l[(1, 0)] = g[1];
+            l[(2, 2)] = g[0];
+            l[(3, 2)] = g[1];
+            l
+        });
+        let chol_p0 = p0
+            .cholesky()
+            .map(|ch| ch.l())
+            .unwrap_or_else(Matrix::<4, 4>::identity);
+        let n_clutter = Poisson::new(c.density * 4.0 * c.half_width * c.half_width)
+            .map_err(|e| distribution("clutter count", &e))?;
+        let unit = Uniform::new(-1.0, 1.0).map_err(|e| distribution("uniform", &e))?;
+        let d_lin = amp.snr();
+        let tau2 = amp.threshold() * amp.threshold();
+        Ok(Self {
+            c,
+            F,
+            kf,
+            R,
+            radar,
+            nn,
+            sn,
+            psn,
+            pda,
+            p0,
+            hyca,
+            pda_pred,
+            nn_pred,
+            hyca_steps,
+            H,
+            chol_q,
+            chol_p0,
+            n_clutter,
+            unit,
+            d_lin,
+            tau2,
+        })
+    }
+
+    /// One run: the five filters' records on the same plots.
+    ///
+    /// # Errors
+    /// A failed filter step.
+    #[allow(non_snake_case)]
+    pub(crate) fn one(&self, rng: &mut ChaCha8Rng) -> Result<Vec<RunRecord>, ScenarioError> {
+        let Self {
+            c,
+            F,
+            kf,
+            R,
+            radar,
+            nn,
+            sn,
+            psn,
+            pda,
+            p0,
+            hyca_steps,
+            H,
+            chol_q,
+            chol_p0,
+            n_clutter,
+            unit,
+            d_lin,
+            tau2,
+            ..
+        } = self;
+        let (F, R, H, p0, chol_q, chol_p0, d_lin, tau2) =
+            (*F, *R, *H, *p0, *chol_q, *chol_p0, *d_lin, *tau2);
         let w4 = Vector::<4>::new(
             StandardNormal.sample(rng),
             StandardNormal.sample(rng),
@@ -268,15 +351,15 @@ pub(crate) fn run_config(
                         R,
                         CovarianceForm::Standard,
                     )?;
-                    let out = nn.associate(&pred, &mp, &radar, &plots).map_err(assoc)?;
+                    let out = nn.associate(&pred, &mp, radar, &plots).map_err(assoc)?;
                     Gaussian::from_symmetrized(*out.posterior.mean(), &hs.posterior)?
                 } else {
-                    let mp = kf.predict_measurement(&pred, &radar)?;
+                    let mp = kf.predict_measurement(&pred, radar)?;
                     let out = match i {
-                        0 => nn.associate(&pred, &mp, &radar, &plots),
-                        2 => sn.associate(&pred, &mp, &radar, &plots),
-                        3 => psn.associate(&pred, &mp, &radar, &plots),
-                        _ => pda.associate(&pred, &mp, &radar, &plots),
+                        0 => nn.associate(&pred, &mp, radar, &plots),
+                        2 => sn.associate(&pred, &mp, radar, &plots),
+                        3 => psn.associate(&pred, &mp, radar, &plots),
+                        _ => pda.associate(&pred, &mp, radar, &plots),
                     }
                     .map_err(assoc)?;
                     out.posterior
@@ -296,47 +379,69 @@ pub(crate) fn run_config(
                 }
             }
         }
-        tick();
         Ok(recs
             .into_iter()
             .zip(lost)
             .map(|(steps, lost)| RunRecord { steps, lost })
             .collect())
-    };
-    let all = monte_carlo(seed, runs, one_run, || {})?;
-    let n_runs = all.len();
-    let mut filters = Vec::with_capacity(5);
-    for i in 0..5 {
-        let records: Vec<RunRecord> = all.iter().filter_map(|r| r.get(i).cloned()).collect();
-        let lost = records.iter().filter(|r| r.lost).count();
-        let metrics = Metrics::from_runs(&records, 4, 2, 0.5).ok();
-        let kept: Vec<&RunRecord> = records.iter().filter(|r| !r.lost).collect();
-        let half = c.steps / 2;
-        let (mut se, mut nees, mut cnt) = (0.0, 0.0, 0usize);
-        for r in &kept {
-            for s in r.steps.iter().skip(half) {
-                se += s.pos_err_sq;
-                nees += s.nees.unwrap_or(f64::NAN);
-                cnt += 1;
-            }
-        }
-        let cnt = cnt.max(1) as f64;
-        let iv = anees_interval(4, kept.len().max(1), 0.95)?;
-        filters.push(FilterResult {
-            metrics,
-            lost,
-            runs: n_runs,
-            anees: nees / cnt,
-            rmse: (se / cnt).sqrt(),
-            interval: (iv.lower, iv.upper),
-        });
     }
-    Ok(ConfigResult {
-        filters,
-        predicted_nn: predicted_rmse(&nn_pred, &p0)?,
-        predicted_hyca: predicted_rmse(&hyca, &p0)?,
-        predicted_pda: predicted_rmse(&pda_pred, &p0)?,
-    })
+
+    /// The configuration's results from its runs' records (`all[i]`: run i's five
+    /// filter records), in run order.
+    ///
+    /// # Errors
+    /// The ANEES interval's or the predictors' errors.
+    pub(crate) fn result(&self, all: &[Vec<RunRecord>]) -> Result<ConfigResult, ScenarioError> {
+        let n_runs = all.len();
+        let mut filters = Vec::with_capacity(5);
+        for i in 0..5 {
+            let records: Vec<RunRecord> = all.iter().filter_map(|r| r.get(i).cloned()).collect();
+            let lost = records.iter().filter(|r| r.lost).count();
+            let metrics = Metrics::from_runs(&records, 4, 2, 0.5).ok();
+            let kept: Vec<&RunRecord> = records.iter().filter(|r| !r.lost).collect();
+            let half = self.c.steps / 2;
+            let (mut se, mut nees, mut cnt) = (0.0, 0.0, 0usize);
+            for r in &kept {
+                for s in r.steps.iter().skip(half) {
+                    se += s.pos_err_sq;
+                    nees += s.nees.unwrap_or(f64::NAN);
+                    cnt += 1;
+                }
+            }
+            let cnt = cnt.max(1) as f64;
+            let iv = anees_interval(4, kept.len().max(1), 0.95)?;
+            filters.push(FilterResult {
+                metrics,
+                lost,
+                runs: n_runs,
+                anees: nees / cnt,
+                rmse: (se / cnt).sqrt(),
+                interval: (iv.lower, iv.upper),
+            });
+        }
+        Ok(ConfigResult {
+            filters,
+            predicted_nn: predicted_rmse(&self.nn_pred, &self.p0)?,
+            predicted_hyca: predicted_rmse(&self.hyca, &self.p0)?,
+            predicted_pda: predicted_rmse(&self.pda_pred, &self.p0)?,
+        })
+    }
+}
+
+/// Runs one configuration over `runs` (seeded per run from `seed`): the tests' entry.
+///
+/// # Errors
+/// Invalid parameters, a failed filter step.
+#[cfg(test)]
+pub(crate) fn run_config(
+    c: &Config,
+    seed: u64,
+    runs: std::ops::Range<u64>,
+    tick: &(dyn Fn() + Sync),
+) -> Result<ConfigResult, ScenarioError> {
+    let prep = Prepared::new(c)?;
+    let all = argus_sim::monte_carlo(seed, runs, |_, rng| prep.one(rng), tick)?;
+    prep.result(&all)
 }
 
 /// The configuration for density `density` and SNR `snr_db` from the parameters.
@@ -425,153 +530,11 @@ impl Scenario for Clutter {
 
     #[allow(clippy::too_many_lines)]
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let p = &ctx.params;
-        let mut report = Report::default();
-        let mut table = Vec::new();
-        let progress = &ctx.progress;
-        let tick = || progress.tick();
-        let mut fig_rmse: Vec<Figure> = Vec::new();
-        let mut fig_loss: Vec<Figure> = Vec::new();
-        for (si, &snr) in SNRS_DB.iter().enumerate() {
-            let mut results = Vec::new();
-            for (di, &lam) in DENSITIES.iter().enumerate() {
-                let c = config(p, lam, snr)?;
-                let seed = ctx.seed.wrapping_add(1000 * si as u64 + di as u64);
-                let r = run_config(&c, seed, ctx.runs.clone(), &tick)?;
-                for (name, f) in FILTERS.iter().zip(&r.filters) {
-                    let key = format!("{name}_{snr:.0}dB_{lam:e}");
-                    let loss = f.lost as f64 / f.runs.max(1) as f64;
-                    let inside = f.interval.0 <= f.anees && f.anees <= f.interval.1;
-                    report.rows.push(
-                        Row::new(
-                            format!("{key}_rmse"),
-                            format!("{name} RMSE, {snr:.0} dB, λ={lam:e}"),
-                            f.rmse,
-                            "m",
-                        )
-                        .note(format!(
-                            "ANEES {:.2} ({}) in [{:.2}, {:.2}], loss {:.1} %",
-                            f.anees,
-                            if inside { "inside" } else { "outside" },
-                            f.interval.0,
-                            f.interval.1,
-                            100.0 * loss
-                        )),
-                    );
-                    table.push(vec![
-                        snr,
-                        lam,
-                        FILTERS.iter().position(|n| n == name).unwrap_or(0) as f64,
-                        f.rmse,
-                        f.anees,
-                        loss,
-                        f.metrics.as_ref().map_or(f64::NAN, |m| m.avg_rmse_pos),
-                    ]);
-                }
-                for (name, pred, idx) in [
-                    ("NN", r.predicted_nn, 0usize),
-                    ("NN-HYCA", r.predicted_hyca, 1),
-                    ("PDA", r.predicted_pda, 4),
-                ] {
-                    let f = r.filters.get(idx);
-                    let mc = f.map_or(f64::NAN, |f| f.rmse);
-                    let loss = f.map_or(f64::NAN, |f| f.lost as f64 / f.runs.max(1) as f64);
-                    report.rows.push(
-                        Row::new(
-                            format!("{name}_{snr:.0}dB_{lam:e}_predicted"),
-                            format!("{name} predicted RMSE, {snr:.0} dB, λ={lam:e}"),
-                            pred.unwrap_or(f64::INFINITY),
-                            "m",
-                        )
-                        .paper_text("off-line prediction")
-                        .note(match pred {
-                            Some(v) => format!(
-                                "Monte Carlo {mc:.2} m ({:+.1} %), loss {:.1} %",
-                                100.0 * (v / mc - 1.0),
-                                100.0 * loss
-                            ),
-                            None => format!(
-                                "recursion diverges: track loss predicted (Monte Carlo loss {:.1} %)",
-                                100.0 * loss
-                            ),
-                        }),
-                    );
-                }
-                results.push((lam, r));
-            }
-            let mut rmse_lines = Vec::new();
-            let mut loss_lines = Vec::new();
-            for (i, name) in FILTERS.iter().enumerate() {
-                let pts = |f: &dyn Fn(&FilterResult) -> f64| -> Vec<(f64, f64)> {
-                    results
-                        .iter()
-                        .filter_map(|(lam, r)| r.filters.get(i).map(|x| (lam.log10(), f(x))))
-                        .collect()
-                };
-                rmse_lines.push(Line {
-                    label: (*name).into(),
-                    points: pts(&|x| x.rmse),
-                    style: LineStyle::Solid,
-                });
-                loss_lines.push(Line {
-                    label: (*name).into(),
-                    points: pts(&|x| x.lost as f64 / x.runs.max(1) as f64),
-                    style: LineStyle::Solid,
-                });
-            }
-            let pick: [(&str, Predicted); 3] = [
-                ("NN predicted", |r| r.predicted_nn),
-                ("NN-HYCA predicted", |r| r.predicted_hyca),
-                ("PDA predicted", |r| r.predicted_pda),
-            ];
-            for (label, f) in pick {
-                rmse_lines.push(Line {
-                    label: label.into(),
-                    points: results
-                        .iter()
-                        .filter_map(|(lam, r)| f(r).map(|v| (lam.log10(), v)))
-                        .collect(),
-                    style: LineStyle::Points,
-                });
-            }
-            fig_rmse.push(Figure {
-                name: format!("clutter_rmse_{snr:.0}db"),
-                title: format!("Steady-state position RMSE vs clutter density, {snr:.0} dB"),
-                x_label: "log10 clutter density (m⁻²)".into(),
-                y_label: "RMSE (m)".into(),
-                lines: rmse_lines,
-            });
-            fig_loss.push(Figure {
-                name: format!("clutter_loss_{snr:.0}db"),
-                title: format!("Track-loss rate vs clutter density, {snr:.0} dB"),
-                x_label: "log10 clutter density (m⁻²)".into(),
-                y_label: "track-loss rate".into(),
-                lines: loss_lines,
-            });
-        }
-        progress.finish();
-        report.series.push(Series {
-            name: "clutter_sweep".into(),
-            columns: [
-                "snr_db",
-                "density",
-                "filter",
-                "rmse_ss",
-                "anees_ss",
-                "loss_rate",
-                "rmse_warmup_excluded",
-            ]
-            .iter()
-            .map(|s| (*s).to_string())
-            .collect(),
-            rows: table,
-        });
-        report.figures.extend(fig_rmse);
-        report.figures.extend(fig_loss);
-        report.notes.push(format!(
-            "filters: 0 NN, 1 NN-HYCA, 2 SN, 3 PSN, 4 PDA; densities {DENSITIES:?} m⁻²; P_D set to p_d at each SNR by the threshold; steady state = second half of the scans over runs that kept the track"
-        ));
-        Ok(report)
+        run_whole(self, ctx)
+    }
+
+    fn splittable(&self) -> Option<&dyn Splittable> {
+        Some(self)
     }
 }
 

@@ -21,7 +21,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::ScenarioError;
 use argus_filters::two_point_cv2;
 
-use crate::campaign::{Campaign, Splittable, in_process};
+use crate::campaign::{Campaign, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::estimator::{CvKf, cv_kf, position, step, unbiased};
 use crate::params::{ParamSpec, Params};
@@ -150,8 +150,7 @@ impl Scenario for CvPolar {
     }
 
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let records = Splittable::records(self, ctx)?;
-        self.reduce_records(&ctx.params, &in_process(records, &ctx.runs))
+        run_whole(self, ctx)
     }
 
     fn splittable(&self) -> Option<&dyn Splittable> {
@@ -205,6 +204,7 @@ impl Campaign for CvPolar {
     fn one_run(
         &self,
         s: &Setup,
+        _seed: u64,
         _run: u64,
         rng: &mut argus_sim::ChaCha8Rng,
     ) -> Result<CvRun, ScenarioError> {

@@ -17,11 +17,12 @@ use argus_adaptive::AdaptiveError;
 use argus_core_math::Vector;
 use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
-    monte_carlo,
 };
 use experiment::{DragBearingConfig, DragFilter, DragRun, reference_trajectory, simulate_run};
+use serde::{Deserialize, Serialize};
 use statistics::McSummary;
 
+use crate::campaign::{Campaign, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -184,18 +185,88 @@ impl Scenario for DragBearing {
         Ok((truth, vec![sensor]))
     }
 
-    #[allow(clippy::too_many_lines)]
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let c = config(&ctx.params)?;
-        let progress = &ctx.progress;
-        let base = ctx.seed;
-        let runs: Vec<DragRun> = monte_carlo(
-            ctx.seed,
-            ctx.runs.clone(),
-            |run, _rng| simulate_run(&c, run_seed(base, run)).map_err(err),
-            || progress.tick(),
-        )?;
-        progress.finish();
+        run_whole(self, ctx)
+    }
+
+    fn splittable(&self) -> Option<&dyn Splittable> {
+        Some(self)
+    }
+}
+
+/// A [`DragRun`] as plain arrays (the vectors' components in order): one line of a
+/// split campaign's per-run file.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub(crate) struct DragRecord {
+    times: Vec<f64>,
+    truth: Vec<[f64; 4]>,
+    estimates: [Vec<[f64; 4]>; 4],
+    detections: [Vec<usize>; 4],
+    final_input: [Option<[f64; 2]>; 4],
+    failed_at: [Option<usize>; 4],
+}
+
+fn arrays(v: &[Vector<4>]) -> Vec<[f64; 4]> {
+    v.iter().map(|x| (*x).into()).collect()
+}
+
+fn vectors(v: &[[f64; 4]]) -> Vec<Vector<4>> {
+    v.iter().map(|x| Vector::<4>::from(*x)).collect()
+}
+
+impl From<&DragRun> for DragRecord {
+    fn from(r: &DragRun) -> Self {
+        Self {
+            times: r.times.clone(),
+            truth: arrays(&r.truth),
+            estimates: r.estimates.each_ref().map(|e| arrays(e)),
+            detections: r.detections.clone(),
+            final_input: r.final_input.map(|u| u.map(Into::into)),
+            failed_at: r.failed_at,
+        }
+    }
+}
+
+impl From<&DragRecord> for DragRun {
+    fn from(r: &DragRecord) -> Self {
+        Self {
+            times: r.times.clone(),
+            truth: vectors(&r.truth),
+            estimates: r.estimates.each_ref().map(|e| vectors(e)),
+            detections: r.detections.clone(),
+            final_input: r.final_input.map(|u| u.map(Vector::<2>::from)),
+            failed_at: r.failed_at,
+        }
+    }
+}
+
+impl Campaign for DragBearing {
+    type Setup = DragBearingConfig;
+    type Run = DragRecord;
+
+    fn setup(&self, p: &Params) -> Result<DragBearingConfig, ScenarioError> {
+        config(p)
+    }
+
+    fn one_run(
+        &self,
+        c: &DragBearingConfig,
+        seed: u64,
+        run: u64,
+        _rng: &mut argus_sim::ChaCha8Rng,
+    ) -> Result<DragRecord, ScenarioError> {
+        let r = simulate_run(c, run_seed(seed, run)).map_err(err)?;
+        Ok(DragRecord::from(&r))
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn reduce(
+        &self,
+        c: &DragBearingConfig,
+        records: &[DragRecord],
+    ) -> Result<Report, ScenarioError> {
+        let runs: Vec<DragRun> = records.iter().map(DragRun::from).collect();
+        let c = *c;
         let s = McSummary::from_runs(&c, &runs).map_err(err)?;
         let (turn, end) = (c.turn_time, c.duration);
         let last = (end - 10.0).max(turn);

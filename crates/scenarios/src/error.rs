@@ -181,6 +181,15 @@ pub enum ScenarioError {
     /// The adaptive-R decoupled filter rejected a value.
     #[error("adaptive filter: {0}")]
     Adaptive(#[from] argus_adaptive::AdaptiveError),
+    /// The ADS-B truth did not read or clean.
+    #[error("ads-b: {0}")]
+    Adsb(#[from] argus_adsb::AdsbError),
+    /// A geodetic conversion failed.
+    #[error("geography: {0}")]
+    Geo(#[from] argus_geo::GeoError),
+    /// Scoring the tracks against the truth failed.
+    #[error("scoring: {0}")]
+    Score(#[from] argus_score::ScoreError),
     /// The multi-target tracker rejected a configuration or a plot.
     #[error("tracker: {0}")]
     Tracker(#[from] argus_tracker::TrackerError),

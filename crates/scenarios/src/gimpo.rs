@@ -12,13 +12,15 @@
 
 mod estimate;
 mod report;
+mod sums;
 
 use argus_core_math::Vector;
 use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
-    generate_plots, monte_carlo,
+    generate_plots,
 };
 
+use crate::campaign::{Campaign, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -186,7 +188,31 @@ impl Scenario for Gimpo {
     }
 
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let p = &ctx.params;
+        run_whole(self, ctx)
+    }
+
+    fn splittable(&self) -> Option<&dyn Splittable> {
+        Some(self)
+    }
+}
+
+/// What a `gimpo` campaign shares between its runs and the reduce step.
+pub(crate) struct Setup {
+    params: Params,
+    truth: Truth,
+    sensors: Vec<SensorSpec>,
+    est: estimate::Estimators,
+    traj: Trajectory,
+    /// Plot times after the two initialising plots: the same in every run (the beam
+    /// timing depends on the truth only, not on the noise draws).
+    times: Vec<f64>,
+}
+
+impl Campaign for Gimpo {
+    type Setup = Setup;
+    type Run = estimate::RunOut;
+
+    fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let (truth, sensors) = self.scene(p)?;
         let est = estimate::Estimators::new(p)?;
         let traj: Trajectory =
@@ -198,24 +224,56 @@ impl Scenario for Gimpo {
                     scenario: "gimpo",
                     message: "no target".into(),
                 })?;
-        let one_run = |run: u64, rng: &mut argus_sim::ChaCha8Rng| {
-            let plots = estimate::simulate(&truth, &sensors, rng)?;
-            est.run(&traj, run, &plots)
-        };
-        let progress = &ctx.progress;
-        let runs = monte_carlo(ctx.seed, ctx.runs.clone(), one_run, || progress.tick())?;
-        progress.finish();
+        // Any generator gives the same times (only the noise depends on it).
+        let times: Vec<f64> = generate_plots(&truth, &sensors, &mut argus_sim::run_rng(0, 0))?
+            .iter()
+            .skip(2)
+            .map(|pl| pl.plot.time())
+            .collect();
+        Ok(Setup {
+            params: p.clone(),
+            truth,
+            sensors,
+            est,
+            traj,
+            times,
+        })
+    }
 
-        // Plot times are the same in every run (the beam timing depends on the truth only).
-        let times: Vec<f64> = {
-            let mut rng = argus_sim::run_rng(ctx.seed, 0);
-            generate_plots(&truth, &sensors, &mut rng)?
-                .iter()
-                .skip(2)
-                .map(|pl| pl.plot.time())
-                .collect()
-        };
-        let stats = report::Stats::new(&times, &runs, traj.end());
-        report::report(p, est.clip, &stats)
+    fn one_run(
+        &self,
+        s: &Setup,
+        _seed: u64,
+        run: u64,
+        rng: &mut argus_sim::ChaCha8Rng,
+    ) -> Result<estimate::RunOut, ScenarioError> {
+        let plots = estimate::simulate(&s.truth, &s.sensors, rng)?;
+        s.est.run(&s.traj, run, &plots)
+    }
+
+    fn reduce(&self, s: &Setup, runs: &[estimate::RunOut]) -> Result<Report, ScenarioError> {
+        self.reduce_stream(s, runs.len() as u64, &mut runs.iter().cloned().map(Ok))
+    }
+
+    /// One pass over the runs, keeping only [`sums::Sums`]: a merge of any number of runs
+    /// holds per-step sums and a few final ratios per run, not the runs' records.
+    fn reduce_stream(
+        &self,
+        s: &Setup,
+        count: u64,
+        runs: &mut dyn Iterator<Item = Result<estimate::RunOut, ScenarioError>>,
+    ) -> Result<Report, ScenarioError> {
+        let t_end = s.traj.end();
+        let first = s
+            .times
+            .iter()
+            .position(|t| *t >= report::WARMUP * t_end)
+            .unwrap_or(0);
+        let expected = usize::try_from(count).unwrap_or(usize::MAX);
+        let mut sums = sums::Sums::new(s.times.clone(), first, expected);
+        for r in runs {
+            sums.add(&r?);
+        }
+        report::report(&s.params, s.est.clip, &sums.finish()?)
     }
 }

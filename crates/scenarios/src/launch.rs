@@ -16,9 +16,10 @@ use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{Ekf, GaussianFilter};
 use argus_motion_models::Ca3D;
 use argus_sensors::{RadarNoise, Spherical3D, wrap_angle};
-use argus_sim::{ChaCha8Rng, Metrics, RunRecord, SensorSpec, StepRecord, Truth, monte_carlo};
+use argus_sim::{ChaCha8Rng, Metrics, RunRecord, SensorSpec, StepRecord, Truth};
 use rand_distr::{Distribution, StandardNormal};
 
+use crate::campaign::{Campaign, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -158,9 +159,34 @@ impl Scenario for Launch {
         })
     }
 
-    #[allow(clippy::too_many_lines)]
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let p = &ctx.params;
+        run_whole(self, ctx)
+    }
+
+    fn splittable(&self) -> Option<&dyn Splittable> {
+        Some(self)
+    }
+}
+
+/// What a `launch` campaign shares between its runs and the reduce step.
+pub(crate) struct Setup {
+    period: f64,
+    sr: f64,
+    sa: f64,
+    ekf: Ekf<Ca3D>,
+    radar: Spherical3D<9>,
+    times: Vec<f64>,
+    truth: Vec<[f64; 6]>,
+    p0: Matrix<9, 9>,
+    l0: Matrix<9, 9>,
+}
+
+impl Campaign for Launch {
+    type Setup = Setup;
+    /// The steps of a run (the argus-sim record the metrics reduce).
+    type Run = RunRecord;
+
+    fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let period = p.get("period")?;
         let sr = p.get("sigma_r")?;
         let sa = p.get("sigma_ang_mrad")? * 1e-3;
@@ -180,46 +206,76 @@ impl Scenario for Launch {
             .cholesky()
             .map(|c| c.l())
             .unwrap_or_else(Matrix::<9, 9>::identity);
-        let one_run = |_: u64, rng: &mut ChaCha8Rng| -> Result<RunRecord, ScenarioError> {
-            let first = truth.first().ok_or_else(|| ScenarioError::Degenerate {
-                scenario: "launch",
-                message: "no steps".into(),
-            })?;
-            let w = Vector::<9>::from_fn(|_, _| StandardNormal.sample(rng));
-            let mut est = Gaussian::new(ca_state(0.0, first) + l0 * w, p0)?;
-            let mut steps = Vec::with_capacity(times.len());
-            let mut lost = false;
-            for (k, (&t, s)) in times.iter().zip(&truth).enumerate() {
-                let x = ca_state(t, s);
-                let mut nis = None;
-                if k > 0 {
-                    let pred = ekf.predict(&est, period)?;
-                    let rel = Vector::<3>::new(s[0], s[1], s[2]);
-                    let r = rel.norm();
-                    let az = rel[1].atan2(rel[0]);
-                    let el = (rel[2] / r).asin();
-                    let e: [f64; 3] = [
-                        StandardNormal.sample(rng),
-                        StandardNormal.sample(rng),
-                        StandardNormal.sample(rng),
-                    ];
-                    let z =
-                        Vector::<3>::new(r + sr * e[0], wrap_angle(az + sa * e[1]), el + sa * e[2]);
-                    let (post, innov) = ekf.update(&pred, &radar, &z)?;
-                    est = post;
-                    nis = Some(innov.nis);
-                }
-                let truth6 = Vector::<6>::from_column_slice(&[x[0], x[1], x[3], x[4], x[6], x[7]]);
-                let rec = StepRecord::from_estimate_3d(t, &marginal(&est)?, &truth6, nis);
-                lost |= rec.nees.is_none_or(|v| v > 1000.0);
-                steps.push(rec);
+        Ok(Setup {
+            period,
+            sr,
+            sa,
+            ekf,
+            radar,
+            times,
+            truth,
+            p0,
+            l0,
+        })
+    }
+
+    fn one_run(
+        &self,
+        s: &Setup,
+        _seed: u64,
+        _run: u64,
+        rng: &mut ChaCha8Rng,
+    ) -> Result<RunRecord, ScenarioError> {
+        let Setup {
+            period,
+            sr,
+            sa,
+            ekf,
+            radar,
+            times,
+            truth,
+            p0,
+            l0,
+        } = s;
+        let (period, sr, sa, p0, l0) = (*period, *sr, *sa, *p0, *l0);
+        let first = truth.first().ok_or_else(|| ScenarioError::Degenerate {
+            scenario: "launch",
+            message: "no steps".into(),
+        })?;
+        let w = Vector::<9>::from_fn(|_, _| StandardNormal.sample(rng));
+        let mut est = Gaussian::new(ca_state(0.0, first) + l0 * w, p0)?;
+        let mut steps = Vec::with_capacity(times.len());
+        let mut lost = false;
+        for (k, (&t, s)) in times.iter().zip(truth).enumerate() {
+            let x = ca_state(t, s);
+            let mut nis = None;
+            if k > 0 {
+                let pred = ekf.predict(&est, period)?;
+                let rel = Vector::<3>::new(s[0], s[1], s[2]);
+                let r = rel.norm();
+                let az = rel[1].atan2(rel[0]);
+                let el = (rel[2] / r).asin();
+                let e: [f64; 3] = [
+                    StandardNormal.sample(rng),
+                    StandardNormal.sample(rng),
+                    StandardNormal.sample(rng),
+                ];
+                let z = Vector::<3>::new(r + sr * e[0], wrap_angle(az + sa * e[1]), el + sa * e[2]);
+                let (post, innov) = ekf.update(&pred, radar, &z)?;
+                est = post;
+                nis = Some(innov.nis);
             }
-            Ok(RunRecord { steps, lost })
-        };
-        let progress = &ctx.progress;
-        let records = monte_carlo(ctx.seed, ctx.runs.clone(), one_run, || progress.tick())?;
-        progress.finish();
-        let m = Metrics::from_runs(&records, 6, 3, 0.1)?;
+            let truth6 = Vector::<6>::from_column_slice(&[x[0], x[1], x[3], x[4], x[6], x[7]]);
+            let rec = StepRecord::from_estimate_3d(t, &marginal(&est)?, &truth6, nis);
+            lost |= rec.nees.is_none_or(|v| v > 1000.0);
+            steps.push(rec);
+        }
+        Ok(RunRecord { steps, lost })
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn reduce(&self, _s: &Setup, records: &[RunRecord]) -> Result<Report, ScenarioError> {
+        let m = Metrics::from_runs(records, 6, 3, 0.1)?;
         let mut report = Report::default();
         let no_number = "no number in the paper";
         report.rows.push(

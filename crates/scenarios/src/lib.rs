@@ -46,6 +46,7 @@ mod gimpo;
 mod launch;
 mod maneuver_1d;
 mod rbs_landing;
+mod real_traffic;
 mod surveillance;
 
 /// The experiments' own APIs (configuration, one run, statistics) under the scenarios
@@ -59,13 +60,17 @@ pub mod experiments {
     }
     pub use crate::maneuver_1d::experiment as maneuver_1d;
     pub use crate::rbs_landing::experiment as rbs_landing;
+    /// The real-traffic scenario's tracker configurations, by name.
+    pub mod real_traffic {
+        pub use crate::real_traffic::trackers;
+    }
 }
 
 pub use api::{RunOutput, ScenarioInfo, list, merge, run};
-pub use campaign::{Campaign, RecordText, Splittable, in_process};
+pub use campaign::{Campaign, RecordText, Splittable, in_process, run_whole};
 pub use context::{NoProgress, Progress, RunContext};
 pub use error::{ParamProblem, ScenarioError};
 pub use params::{ParamSpec, Params};
 pub use registry::{all, find};
 pub use report::{Figure, Line, LineStyle, Report, Row, Series};
-pub use scenario::Scenario;
+pub use scenario::{Scenario, Simulated, TruthRow};

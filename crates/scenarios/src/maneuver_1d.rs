@@ -16,13 +16,13 @@ use argus_adaptive::Compensation;
 use argus_core_math::{Matrix, Vector};
 use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
-    monte_carlo,
 };
 use experiment::{
     CASE1, CASE2, Maneuver1dConfig, Outcome1d, Stats1d, noise_free_statistic, quantile,
     run_filters, simulate, within_derived,
 };
 
+use crate::campaign::{Campaign, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -209,19 +209,47 @@ impl Scenario for Maneuver1d {
         Ok((truth, vec![sensor]))
     }
 
-    #[allow(clippy::too_many_lines)]
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let (c, etas) = config(&ctx.params)?;
+        run_whole(self, ctx)
+    }
+
+    fn splittable(&self) -> Option<&dyn Splittable> {
+        Some(self)
+    }
+}
+
+/// What a `maneuver-1d` campaign shares: the configuration, the thresholds and the
+/// noise-free GLRT statistic of an onset.
+pub(crate) struct Setup {
+    c: Maneuver1dConfig,
+    etas: [f64; 3],
+    lambda: f64,
+}
+
+impl Campaign for Maneuver1d {
+    type Setup = Setup;
+    type Run = RunOutcomes;
+
+    fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
+        let (c, etas) = config(p)?;
         let lambda = noise_free_statistic(&c, 2.0, 0.5).map_err(err)?;
-        let progress = &ctx.progress;
-        let base = ctx.seed;
-        let per_run: Vec<RunOutcomes> = monte_carlo(
-            ctx.seed,
-            ctx.runs.clone(),
-            |run, _rng| one_run(&c, &etas, run_seed(base, run)),
-            || progress.tick(),
-        )?;
-        progress.finish();
+        Ok(Setup { c, etas, lambda })
+    }
+
+    fn one_run(
+        &self,
+        s: &Setup,
+        seed: u64,
+        run: u64,
+        _rng: &mut argus_sim::ChaCha8Rng,
+    ) -> Result<RunOutcomes, ScenarioError> {
+        one_run(&s.c, &s.etas, run_seed(seed, run))
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn reduce(&self, s: &Setup, per_run: &[RunOutcomes]) -> Result<Report, ScenarioError> {
+        let Setup { c, etas, lambda } = s;
+        let (c, etas, lambda) = (*c, *etas, *lambda);
 
         let mut rows = Vec::new();
         let mut series = Vec::new();

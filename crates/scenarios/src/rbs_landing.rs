@@ -16,8 +16,8 @@ use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
 };
 use experiment::{FILTERS, FilterKind, McSummary, RbsLandingConfig, RunSeries, simulate_run};
-use rayon::prelude::*;
 
+use crate::campaign::{Campaign, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -174,25 +174,53 @@ impl Scenario for RbsLanding {
         Ok((truth, vec![radar]))
     }
 
-    #[allow(clippy::too_many_lines)]
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let c = config(&ctx.params)?;
-        let runs: Vec<u64> = ctx.runs.clone().collect();
+        run_whole(self, ctx)
+    }
+
+    fn splittable(&self) -> Option<&dyn Splittable> {
+        Some(self)
+    }
+}
+
+impl Campaign for RbsLanding {
+    type Setup = RbsLandingConfig;
+    /// One [`RunSeries`] per case of [`CASES`].
+    type Run = Vec<RunSeries>;
+
+    fn setup(&self, p: &Params) -> Result<RbsLandingConfig, ScenarioError> {
+        config(p)
+    }
+
+    fn one_run(
+        &self,
+        c: &RbsLandingConfig,
+        seed: u64,
+        run: u64,
+        _rng: &mut argus_sim::ChaCha8Rng,
+    ) -> Result<Vec<RunSeries>, ScenarioError> {
+        CASES
+            .iter()
+            .enumerate()
+            .map(|(ci, (_, scale))| {
+                // Case ci uses seeds seed + 1_000_000·ci + run: independent streams per case.
+                let base = seed.wrapping_add(1_000_000 * ci as u64);
+                Ok(simulate_run(c, *scale, base.wrapping_add(run))?)
+            })
+            .collect()
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn reduce(
+        &self,
+        c: &RbsLandingConfig,
+        runs: &[Vec<RunSeries>],
+    ) -> Result<Report, ScenarioError> {
         let mut summaries = Vec::with_capacity(CASES.len());
-        for (ci, (_, scale)) in CASES.iter().enumerate() {
-            // Case ci uses seeds seed + 1_000_000·ci + run: independent streams per case.
-            let base = ctx.seed.wrapping_add(1_000_000 * ci as u64);
-            let series: Vec<RunSeries> = runs
-                .par_iter()
-                .map(|&i| {
-                    let out = simulate_run(&c, *scale, base.wrapping_add(i));
-                    ctx.progress.tick();
-                    out
-                })
-                .collect::<Result<_, _>>()?;
+        for ci in 0..CASES.len() {
+            let series: Vec<RunSeries> = runs.iter().filter_map(|r| r.get(ci).cloned()).collect();
             summaries.push(McSummary::from_runs(&series, c.dt)?);
         }
-        ctx.progress.finish();
 
         let mut rows = Vec::new();
         let mut series = Vec::new();

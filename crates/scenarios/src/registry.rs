@@ -4,7 +4,8 @@
 use crate::error::ScenarioError;
 use crate::scenario::Scenario;
 use crate::{
-    bias_32, clutter, cv_polar, drag_bearing, gimpo, launch, maneuver_1d, rbs_landing, surveillance,
+    bias_32, clutter, cv_polar, drag_bearing, gimpo, launch, maneuver_1d, rbs_landing,
+    real_traffic, surveillance,
 };
 
 /// Every scenario, in listing order.
@@ -20,6 +21,7 @@ pub fn all() -> Vec<Box<dyn Scenario>> {
         Box::new(maneuver_1d::Maneuver1d),
         Box::new(drag_bearing::DragBearing),
         Box::new(surveillance::Surveillance),
+        Box::new(real_traffic::RealTraffic),
         // One line per scenario, e.g. `Box::new(gimpo::Gimpo),`
     ]
 }

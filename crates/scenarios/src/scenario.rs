@@ -1,7 +1,7 @@
 //! The scenario framework: a paper experiment implements [`Scenario`] in its own file
 //! and is registered with one line in [`crate::all`].
 
-use argus_sim::{SensorSpec, Truth};
+use argus_sim::{LabelledPlot, SensorSpec, Truth};
 
 use crate::campaign::Splittable;
 use crate::context::RunContext;
@@ -37,4 +37,43 @@ pub trait Scenario: Sync {
     fn splittable(&self) -> Option<&dyn Splittable> {
         None
     }
+    /// One run's plots and truth made by the scenario itself, for a scenario whose
+    /// plots do not come from a [`Truth`] scene through `argus_sim::generate_plots`
+    /// (e.g. recorded traffic seen by a rotating radar). `None` (the default): use
+    /// [`Scenario::scene`].
+    fn simulated(
+        &self,
+        _params: &Params,
+        _seed: u64,
+        _run: u64,
+    ) -> Option<Result<Simulated, ScenarioError>> {
+        None
+    }
+}
+
+/// One run's plots and truth, as [`Scenario::simulated`] makes them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Simulated {
+    /// The plots, in time order.
+    pub plots: Vec<LabelledPlot>,
+    /// The truth samples, per target in time order.
+    pub truth: Vec<TruthRow>,
+}
+
+/// One truth sample of [`Simulated`]: time (s), target name, position (m) and velocity
+/// (m/s) in the local plane.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TruthRow {
+    /// Time, s.
+    pub t: f64,
+    /// The target's name.
+    pub target: String,
+    /// x (east), m.
+    pub x: f64,
+    /// x velocity, m/s.
+    pub vx: f64,
+    /// y (north), m.
+    pub y: f64,
+    /// y velocity, m/s.
+    pub vy: f64,
 }

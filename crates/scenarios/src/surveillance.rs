@@ -44,7 +44,7 @@ mod setup;
 use argus_core_math::Vector;
 use argus_sim::{ChaCha8Rng, SensorSpec, Truth};
 
-use crate::campaign::{Campaign, Splittable, in_process};
+use crate::campaign::{Campaign, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -183,8 +183,7 @@ impl Scenario for Surveillance {
     }
 
     fn run(&self, ctx: &RunContext<'_>) -> Result<Report, ScenarioError> {
-        let records = Splittable::records(self, ctx)?;
-        self.reduce_records(&ctx.params, &in_process(records, &ctx.runs))
+        run_whole(self, ctx)
     }
 
     fn splittable(&self) -> Option<&dyn Splittable> {
@@ -200,7 +199,13 @@ impl Campaign for Surveillance {
         Setup::new(params)
     }
 
-    fn one_run(&self, s: &Setup, run: u64, rng: &mut ChaCha8Rng) -> Result<SurvRun, ScenarioError> {
+    fn one_run(
+        &self,
+        s: &Setup,
+        _seed: u64,
+        run: u64,
+        rng: &mut ChaCha8Rng,
+    ) -> Result<SurvRun, ScenarioError> {
         let truth = s.truth(run)?;
         let scans = s.plots(&truth, rng)?;
         let truth_xy = (0..s.scans)

@@ -61,7 +61,9 @@ pub use error::SimError;
 pub use metrics::{Interval, Metrics, RunRecord, StepMetrics, StepRecord};
 pub use montecarlo::{monte_carlo, run_rng};
 pub use ospa::{Gospa, GospaValue, Ospa, OspaValue};
-pub use plots::{LabelledPlot, Origin, beam_crossings, generate_plots};
+pub use plots::{
+    LabelledPlot, Origin, Rotation, beam_crossings, beam_crossings_along, generate_plots,
+};
 pub use sensor::{Bias, Clutter, ClutterRegion, Detection, Schedule, SensorKind, SensorSpec};
 pub use track_metrics::{TrackScan, TrackStatistics};
 pub use truth::{KinematicState, Segment, TargetId, Trajectory, Truth};

@@ -201,10 +201,54 @@ pub fn beam_crossings(
     from: f64,
     to: f64,
 ) -> Result<Vec<f64>, SimError> {
-    let delta = |t: f64| -> Result<f64, SimError> {
+    let position = |t: f64| -> Result<[f64; 2], SimError> {
         let s = traj.state_at(t)?;
-        let d = s.position - sensor;
-        Ok(wrap_angle(az0 + TAU * t / period - d.y.atan2(d.x)))
+        Ok([s.position.x, s.position.y])
+    };
+    beam_crossings_along(
+        position,
+        [sensor.x, sensor.y],
+        Rotation::Counterclockwise,
+        period,
+        az0,
+        from,
+        to,
+    )
+}
+
+/// The sense in which a radar's beam turns, seen from above.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rotation {
+    /// Azimuth (counter-clockwise from +x) increasing: `β(t) = az0 + 2π t / period`.
+    Counterclockwise,
+    /// Azimuth decreasing, as most surveillance radars turn (clockwise in bearing from
+    /// north): `β(t) = az0 − 2π t / period`.
+    Clockwise,
+}
+
+/// [`beam_crossings`] for any path `position(t) = [x, y]` and either sense of rotation:
+/// the angle of the beam past the target, `δ(t) = wrap(β(t) − θ(t))` counter-clockwise or
+/// `wrap(θ(t) − β(t))` clockwise, is sampled every `period/36` over `[from, to]` and each
+/// upward zero crossing (not the ±π wrap) refined by bisection to 1e-9 s.
+///
+/// # Errors
+/// Whatever `position` returns for a time it cannot place.
+pub fn beam_crossings_along<E>(
+    position: impl Fn(f64) -> Result<[f64; 2], E>,
+    sensor: [f64; 2],
+    rotation: Rotation,
+    period: f64,
+    az0: f64,
+    from: f64,
+    to: f64,
+) -> Result<Vec<f64>, E> {
+    let delta = |t: f64| -> Result<f64, E> {
+        let p = position(t)?;
+        let theta = (p[1] - sensor[1]).atan2(p[0] - sensor[0]);
+        Ok(match rotation {
+            Rotation::Counterclockwise => wrap_angle(az0 + TAU * t / period - theta),
+            Rotation::Clockwise => wrap_angle(theta - (az0 - TAU * t / period)),
+        })
     };
     let mut out = Vec::new();
     if from.is_nan() || to.is_nan() || to <= from {

@@ -1,7 +1,9 @@
 //! Tracker configuration, validated once by [`crate::Tracker::new`].
 
+use argus_imm::{AircraftTuning, Augmentation, PROBABILITY_SUM_TOL};
+
 use crate::field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
-use crate::{SensorId, TrackerError};
+use crate::{Rotation, SensorId, TrackerError};
 
 /// Everything the tracker needs to know. Build it with [`TrackerConfig::new`] (the
 /// defaults below) and change the public fields; [`crate::Tracker::new`] validates it.
@@ -45,6 +47,9 @@ pub struct TrackerConfig {
     pub estimator: EstimatorConfig,
     /// How confirmed tracks use the plots. Default [`AssociationConfig::Gnn`].
     pub association: AssociationConfig,
+    /// The fraction of a revolution of a rotating sensor ([`SensorConfig::rotation`])
+    /// processed as one sector, in (0, 1]. Default 1/8. Unused without rotating sensors.
+    pub sector_fraction: f64,
 }
 
 /// One sensor: its id, its position and, if it sends polar plots, their noise.
@@ -61,6 +66,10 @@ pub struct SensorConfig {
     pub position: [f64; 2],
     /// The noise of its polar plots (`None`: it sends Cartesian plots only).
     pub polar_noise: Option<PolarNoise>,
+    /// `Some` for a rotating radar whose plots each have their own time (processed by
+    /// sectors, see the crate docs); `None` (the default) for a sensor whose plots come
+    /// in synchronous scans (all plots of a scan at one time).
+    pub rotation: Option<Rotation>,
 }
 
 /// Standard deviations of a polar plot's range and azimuth.
@@ -80,6 +89,7 @@ impl SensorConfig {
             id,
             position: [0.0, 0.0],
             polar_noise: None,
+            rotation: None,
         }
     }
 
@@ -94,6 +104,16 @@ impl SensorConfig {
                 sigma_range,
                 sigma_azimuth,
             }),
+            rotation: None,
+        }
+    }
+
+    /// This sensor as a rotating radar ([`SensorConfig::rotation`]).
+    #[must_use]
+    pub fn with_rotation(self, rotation: Rotation) -> Self {
+        Self {
+            rotation: Some(rotation),
+            ..self
         }
     }
 
@@ -127,6 +147,9 @@ impl SensorConfig {
                 }
             }
         }
+        if let Some(r) = &self.rotation {
+            r.validate()?;
+        }
         Ok(())
     }
 }
@@ -148,8 +171,8 @@ pub enum AssociationConfig {
     /// (see the crate docs). Every plot in a confirmed track's gate is spent (no track is
     /// initiated from it). A track is updated with the moment-matched mixture of its
     /// per-plot Kalman (or EKF) updates and its prediction, weighted by the marginals.
-    /// With [`EstimatorConfig::ImmCv2`] this is IMM-JPDA (see the crate docs); not
-    /// available with [`EstimatorConfig::MultiImm`].
+    /// With [`EstimatorConfig::ImmCv2`] and [`EstimatorConfig::Aircraft`] this is
+    /// IMM-JPDA (see the crate docs); not available with [`EstimatorConfig::MultiImm`].
     Jpda {
         /// Detection probability `P_D` in (0, 1].
         p_detection: f64,
@@ -204,6 +227,21 @@ pub enum EstimatorConfig {
         /// Largest relative change of the reference per plot, in (0, 1), or `None`
         /// (the paper: 5 %).
         clip: Option<f64>,
+    },
+    /// The aircraft IMM ([`argus_imm::AircraftImm`], docs/aircraft-imm.md) per track: two
+    /// CV modes on `[x, vx, y, vy]` and a coordinated turn with the turn rate as a state
+    /// `[x, vx, y, vy, ω]`, mixed by Granström et al.'s rule, EKFs updated with the polar
+    /// plot itself in `(r, θ)`. A plot is gated when it is in some mode's `(r, θ)` gate
+    /// (GNN's cost: its smallest normalised distance over the modes); its likelihood, for
+    /// the score, is the mode mixture `Σⱼ μ̄ⱼ N(νⱼ; 0, Sⱼ)` divided by the Jacobian `r`
+    /// (per m², as the EKF's). A track starts from the two-point estimate of its
+    /// initiating plots ([`argus_imm::AircraftTuning::start_from_cv`]).
+    /// [`crate::TrackerConfig::sigma_a`] is not used. Every sensor must have polar noise
+    /// and every plot must be polar. With JPDA each mode is updated with its own PDA
+    /// mixture of its EKF updates, as the two-CV IMM's IMM-JPDA (see the crate docs).
+    Aircraft {
+        /// Its tuning (`AircraftTuning::default()` is the documented one).
+        tuning: AircraftTuning<2, 3>,
     },
 }
 
@@ -326,6 +364,7 @@ impl TrackerConfig {
             score: None,
             estimator: EstimatorConfig::Kf,
             association: AssociationConfig::Gnn,
+            sector_fraction: 0.125,
         }
     }
 
@@ -397,6 +436,10 @@ impl TrackerConfig {
         if self.max_misses == 0 {
             return bad(ConfigField::MaxMisses, 0.0, "must be at least 1");
         }
+        let f = self.sector_fraction;
+        if !(f.is_finite() && f > 0.0 && f <= 1.0) {
+            return bad(ConfigField::SectorFraction, f, "must lie in (0, 1]");
+        }
         if let Some(score) = &self.score {
             score.validate()?;
         }
@@ -437,7 +480,25 @@ impl TrackerConfig {
                         "the multi-IMM needs every sensor's polar noise",
                     );
                 }
+                if let Some(r) = self.sensors.iter().find_map(|s| s.rotation) {
+                    return bad(
+                        ConfigField::Sensor(SensorField::RevolutionPeriod),
+                        r.period,
+                        "the multi-IMM with rotating sensors is not built",
+                    );
+                }
                 Some((sigma_a_low, sigma_a_high, p_stay))
+            }
+            EstimatorConfig::Aircraft { tuning } => {
+                validate_aircraft(&tuning)?;
+                if let Some(s) = self.sensors.iter().find(|s| s.polar_noise.is_none()) {
+                    return bad(
+                        ConfigField::Sensor(SensorField::PolarNoise),
+                        f64::from(s.id.0),
+                        "the aircraft IMM needs every sensor's polar noise",
+                    );
+                }
+                None
             }
         };
         if let Some((sigma_a_low, sigma_a_high, p_stay)) = motion {
@@ -500,4 +561,65 @@ impl TrackerConfig {
         }
         Ok(())
     }
+}
+
+/// Checks the aircraft IMM's tuning field by field (what
+/// [`argus_imm::AircraftTuning::build`] checks, each with its own [`EstimatorField`]).
+fn validate_aircraft(t: &AircraftTuning<2, 3>) -> Result<(), TrackerError> {
+    let bad = |field, value: f64, reason| {
+        Err(TrackerError::InvalidConfig {
+            field: ConfigField::Estimator(field),
+            value,
+            reason,
+        })
+    };
+    let positive = t
+        .cv_sigma_a
+        .iter()
+        .map(|&v| (EstimatorField::CvSigmaA, v))
+        .chain([
+            (EstimatorField::CtSigmaA, t.ct_sigma_a),
+            (EstimatorField::CtSigmaOmega, t.ct_sigma_omega),
+            (EstimatorField::StartSigmaOmega, t.start_sigma_omega),
+        ]);
+    for (field, v) in positive {
+        if !(v.is_finite() && v > 0.0) {
+            return bad(field, v, "must be finite and positive");
+        }
+    }
+    for row in &t.markov {
+        if let Some(&v) = row
+            .iter()
+            .find(|v| !(v.is_finite() && (0.0..=1.0).contains(*v)))
+        {
+            return bad(EstimatorField::Markov, v, "entries must lie in [0, 1]");
+        }
+        let sum: f64 = row.iter().sum();
+        if (sum - 1.0).abs() > PROBABILITY_SUM_TOL {
+            return bad(EstimatorField::Markov, sum, "each row must sum to 1");
+        }
+    }
+    if let Some(&v) = t.start_mu.iter().find(|v| !(v.is_finite() && **v >= 0.0)) {
+        return bad(
+            EstimatorField::StartMu,
+            v,
+            "must be finite and non-negative",
+        );
+    }
+    let sum: f64 = t.start_mu.iter().sum();
+    if (sum - 1.0).abs() > PROBABILITY_SUM_TOL {
+        return bad(EstimatorField::StartMu, sum, "must sum to 1");
+    }
+    if t.augmentation.validate().is_err() {
+        let value = match t.augmentation {
+            Augmentation::Fixed { sigma } => sigma,
+            _ => f64::NAN,
+        };
+        return bad(
+            EstimatorField::Augmentation,
+            value,
+            "its turn-rate sigma must be finite and positive",
+        );
+    }
+    Ok(())
 }

@@ -66,6 +66,12 @@ pub enum TrackerError {
         /// What the check found.
         source: SensorError,
     },
+    /// [`crate::Tracker::advance_to`] was given a NaN or infinite time.
+    #[error("advance_to: time {time} is not finite")]
+    NonFiniteTime {
+        /// The time given.
+        time: f64,
+    },
     /// A polar plot's range is zero or negative.
     #[error("plot {index} at t = {time} s from sensor {sensor:?}: range {range} m is not positive")]
     NonPositiveRange {
@@ -89,9 +95,9 @@ pub enum TrackerError {
         sensor: SensorId,
     },
     /// A Cartesian plot given to a tracker whose estimator needs polar plots (the
-    /// multi-IMM).
+    /// multi-IMM, the aircraft IMM).
     #[error(
-        "plot {index} at t = {time} s from sensor {sensor:?} is Cartesian; the multi-IMM needs polar plots"
+        "plot {index} at t = {time} s from sensor {sensor:?} is Cartesian; the {estimator} needs polar plots"
     )]
     NotPolar {
         /// Index of the plot in the slice given.
@@ -100,6 +106,8 @@ pub enum TrackerError {
         time: f64,
         /// Its sensor.
         sensor: SensorId,
+        /// The estimator that needs them (`"multi-IMM"`, `"aircraft IMM"`).
+        estimator: &'static str,
     },
     /// A plot is 3-D (spherical or a 3-D position); the tracker takes 2-D plots.
     #[error(
@@ -134,6 +142,18 @@ pub enum TrackerError {
         time: f64,
         /// The scan's sensor.
         sensor: SensorId,
+    },
+    /// [`crate::Tracker::process_scan`] was given a rotating sensor's plots (they go
+    /// through [`crate::Tracker::process`], by sectors), or a synchronous scan at a time
+    /// a rotating sensor's sector ends before (call [`crate::Tracker::advance_to`] first).
+    #[error("process_scan at t = {time} s for sensor {sensor:?}: {reason}")]
+    RotatingScan {
+        /// The scan's time (s).
+        time: f64,
+        /// The scan's sensor.
+        sensor: SensorId,
+        /// What to do instead.
+        reason: &'static str,
     },
     /// The motion model rejected its parameters.
     #[error(transparent)]

@@ -5,17 +5,18 @@
 use argus_core_math::{Gaussian, Vector};
 use argus_filters::{Ekf, GaussianFilter, Kf, MeasurementPrediction};
 use argus_imm::{
-    Imm, ImmEstimate, ImmPrediction, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid,
-    NoiseVariances, log_sum_exp, moment_match,
+    AircraftTuning, Imm, ImmEstimate, ImmPrediction, MarkovMatrix, MultiImm, MultiImmEstimate,
+    NoiseGrid, NoiseVariances, log_sum_exp, moment_match,
 };
 use argus_motion_models::Cv2D;
 use argus_sensors::Polar2D;
 use argus_sensors::PolarMeasurement;
 
+use crate::aircraft::{self, Aircraft3, AircraftGate};
 use crate::field::{ConfigField, EstimatorField};
 use crate::innovation::{gate_box, imm_gate_box, imm_innovation, innovation, polar_half};
 use crate::pda::{imm_jpda_update, jpda_update};
-use crate::plot::{PolarModel, ScanPoint};
+use crate::plot::{CartesianPlots, PolarModel, ScanPoint};
 use crate::state::{MULTI_IMM_HYPOTHESES, MultiState, TrackState};
 use crate::{EstimatorConfig, TrackerConfig, TrackerError};
 
@@ -38,9 +39,21 @@ pub(crate) enum Estimator {
     Imm(Imm2),
     /// Seed 000's multi-IMM noise estimator.
     MultiImm(MultiImm<Kf<Cv2D>, 4, 2, MULTI_IMM_HYPOTHESES>),
+    /// The aircraft IMM, and its tuning (for the start).
+    Aircraft {
+        /// The IMM.
+        imm: Aircraft3,
+        /// Its tuning.
+        tuning: AircraftTuning<2, 3>,
+    },
 }
 
 /// One track's prediction as gating sees it.
+///
+/// A temporary on the stack, one per track per gating pass: the aircraft variant holds its
+/// modes' measurement predictions by value (boxing them would allocate per track and
+/// scan).
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum TrackGate<'a> {
     /// The combined prediction, with the EKF's polar measurement prediction when the
     /// scan has polar plots for an EKF.
@@ -52,6 +65,8 @@ pub(crate) enum TrackGate<'a> {
     },
     /// Per-mode gating of an IMM track.
     Imm(&'a Imm2, &'a ImmPrediction<4, 2>),
+    /// Per-mode polar gating of an aircraft-IMM track.
+    Aircraft(AircraftGate<'a>),
 }
 
 impl TrackGate<'_> {
@@ -68,6 +83,7 @@ impl TrackGate<'_> {
                 (centre, half)
             }
             Self::Imm(_, ip) => imm_gate_box(ip, gamma, r_max),
+            Self::Aircraft(g) => g.query_box(gamma),
         }
     }
 
@@ -79,6 +95,7 @@ impl TrackGate<'_> {
                 innovation(pred, polar.map(|(mp, pm)| (mp, &pm.model)), p)
             }
             Self::Imm(imm, ip) => imm_innovation(imm, ip, p),
+            Self::Aircraft(g) => g.innovation(p),
         }
     }
 }
@@ -137,23 +154,35 @@ impl Estimator {
                         .map_err(|_| bad(EstimatorField::Clip, clip.unwrap_or(f64::NAN)))?,
                 )
             }
+            // Validated field by field by `TrackerConfig::validate`; `build` checks again.
+            EstimatorConfig::Aircraft { tuning } => Self::Aircraft {
+                imm: tuning.build().map_err(|_| TrackerError::InvalidConfig {
+                    field: ConfigField::Estimator(EstimatorField::Kind),
+                    value: f64::NAN,
+                    reason: "the aircraft IMM rejected its tuning",
+                })?,
+                tuning,
+            },
         })
     }
 
-    /// Whether Cartesian plots are accepted (the multi-IMM needs polar ones).
-    pub(crate) fn takes_cartesian(&self) -> bool {
+    /// Whether Cartesian plots are accepted (the multi-IMM and the aircraft IMM need
+    /// polar ones).
+    pub(crate) fn takes_cartesian(&self) -> CartesianPlots {
         match self {
-            Self::Kf(_) | Self::Ekf { .. } | Self::Imm(_) => true,
-            Self::MultiImm(_) => false,
+            Self::Kf(_) | Self::Ekf { .. } | Self::Imm(_) => CartesianPlots::Accepted,
+            Self::MultiImm(_) => CartesianPlots::Refused("multi-IMM"),
+            Self::Aircraft { .. } => CartesianPlots::Refused("aircraft IMM"),
         }
     }
 
     /// Whether the tracks gate polar plots in `(r, θ)` (the EKF), so that a scan of polar
-    /// plots needs each track's [`Estimator::polar_prediction`].
+    /// plots needs each track's [`Estimator::polar_prediction`]. (The aircraft IMM gates
+    /// in `(r, θ)` per mode, through its own [`TrackGate::Aircraft`].)
     pub(crate) fn gates_polar(&self) -> bool {
         match self {
             Self::Ekf { .. } => true,
-            Self::Kf(_) | Self::Imm(_) | Self::MultiImm(_) => false,
+            Self::Kf(_) | Self::Imm(_) | Self::MultiImm(_) | Self::Aircraft { .. } => false,
         }
     }
 
@@ -177,6 +206,10 @@ impl Estimator {
                     start, reference,
                 ))))
             }
+            Self::Aircraft { tuning, .. } => tuning
+                .start_from_cv(&estimate)
+                .ok()
+                .map(|a| TrackState::Aircraft(Box::new(a))),
         }
     }
 
@@ -213,11 +246,12 @@ impl Estimator {
                 }
                 m.combined().ok()
             }
+            (Self::Aircraft { imm, .. }, TrackState::Aircraft(a)) => aircraft::predict(imm, a, dt),
             (Self::Imm(_), _) => {
                 modes.push(None);
                 None
             }
-            (Self::MultiImm(_), _) => None,
+            (Self::MultiImm(_) | Self::Aircraft { .. }, _) => None,
         }
     }
 
@@ -229,7 +263,22 @@ impl Estimator {
     ) -> Option<MeasurementPrediction<4, 2>> {
         match self {
             Self::Ekf { ekf, .. } => ekf.predict_measurement(pred, &sensor?.model).ok(),
-            Self::Kf(_) | Self::Imm(_) | Self::MultiImm(_) => None,
+            Self::Kf(_) | Self::Imm(_) | Self::MultiImm(_) | Self::Aircraft { .. } => None,
+        }
+    }
+
+    /// The per-mode polar gate of an aircraft-IMM track (its state holds its prediction)
+    /// for the plots of `sensor`; `None` for the other estimators or when it fails.
+    pub(crate) fn aircraft_gate<'a>(
+        &'a self,
+        state: &'a TrackState,
+        sensor: Option<&'a PolarModel>,
+    ) -> Option<AircraftGate<'a>> {
+        match (self, state) {
+            (Self::Aircraft { imm, .. }, TrackState::Aircraft(a)) => {
+                AircraftGate::new(imm, a, sensor?)
+            }
+            _ => None,
         }
     }
 
@@ -284,7 +333,19 @@ impl Estimator {
                     }),
                 (Some(_), None) => None,
             },
-            (Self::Imm(_) | Self::MultiImm(_), _) => None,
+            // JPDA (its weights), a hit or a coast.
+            (Self::Aircraft { imm, .. }, TrackState::Aircraft(a)) => match (hit, sensor) {
+                (_, Some(pm)) if !weights.is_empty() => {
+                    aircraft::jpda_update(imm, a, weights, points, pm).map(|g| (g, None))
+                }
+                (None, _) => Some((pred, None)),
+                (Some(j), Some(pm)) => points[j]
+                    .polar
+                    .and_then(|z| aircraft::update(imm, a, pm, &z))
+                    .map(|(g, ll)| (g, Some(ll))),
+                (Some(_), None) => None,
+            },
+            (Self::Imm(_) | Self::MultiImm(_) | Self::Aircraft { .. }, _) => None,
         }
     }
 }

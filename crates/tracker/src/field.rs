@@ -34,6 +34,8 @@ pub enum ConfigField {
     MaxPositionSigma,
     /// [`crate::TrackerConfig::grid_cell`].
     GridCell,
+    /// [`crate::TrackerConfig::sector_fraction`].
+    SectorFraction,
     /// A field of [`crate::TrackerConfig::score`].
     Score(ScoreField),
     /// [`crate::TrackerConfig::estimator`] or one of its parameters.
@@ -56,6 +58,10 @@ pub enum SensorField {
     SigmaRange,
     /// [`crate::PolarNoise::sigma_azimuth`].
     SigmaAzimuth,
+    /// [`crate::Rotation::period`] (also: a rotation the estimator cannot take).
+    RevolutionPeriod,
+    /// [`crate::Rotation::north_time`].
+    NorthTime,
 }
 
 /// A field of a [`crate::ScoreConfig`].
@@ -92,6 +98,20 @@ pub enum EstimatorField {
     GridSpacing,
     /// `clip` of [`crate::EstimatorConfig::MultiImm`].
     Clip,
+    /// `cv_sigma_a` of [`crate::EstimatorConfig::Aircraft`]'s tuning.
+    CvSigmaA,
+    /// `ct_sigma_a` of the aircraft tuning.
+    CtSigmaA,
+    /// `ct_sigma_omega` of the aircraft tuning.
+    CtSigmaOmega,
+    /// `markov` of the aircraft tuning.
+    Markov,
+    /// `start_sigma_omega` of the aircraft tuning.
+    StartSigmaOmega,
+    /// `start_mu` of the aircraft tuning.
+    StartMu,
+    /// `augmentation` of the aircraft tuning (its `Fixed` σ).
+    Augmentation,
 }
 
 /// [`crate::AssociationConfig`] or one of its parameters.
@@ -120,6 +140,8 @@ impl ConfigField {
                 SensorField::PolarNoise => "sensors.polar_noise",
                 SensorField::SigmaRange => "sensors.polar_noise.sigma_range",
                 SensorField::SigmaAzimuth => "sensors.polar_noise.sigma_azimuth",
+                SensorField::RevolutionPeriod => "sensors.rotation.period",
+                SensorField::NorthTime => "sensors.rotation.north_time",
             },
             Self::SigmaA => "sigma_a",
             Self::GateProbability => "gate_probability",
@@ -131,6 +153,7 @@ impl ConfigField {
             Self::MaxMisses => "max_misses",
             Self::MaxPositionSigma => "max_position_sigma",
             Self::GridCell => "grid_cell",
+            Self::SectorFraction => "sector_fraction",
             Self::Score(f) => match f {
                 ScoreField::PDetection => "score.p_detection",
                 ScoreField::ClutterDensity => "score.clutter_density",
@@ -146,6 +169,13 @@ impl ConfigField {
                 EstimatorField::PStay => "estimator.p_stay",
                 EstimatorField::GridSpacing => "estimator.grid_spacing",
                 EstimatorField::Clip => "estimator.clip",
+                EstimatorField::CvSigmaA => "estimator.tuning.cv_sigma_a",
+                EstimatorField::CtSigmaA => "estimator.tuning.ct_sigma_a",
+                EstimatorField::CtSigmaOmega => "estimator.tuning.ct_sigma_omega",
+                EstimatorField::Markov => "estimator.tuning.markov",
+                EstimatorField::StartSigmaOmega => "estimator.tuning.start_sigma_omega",
+                EstimatorField::StartMu => "estimator.tuning.start_mu",
+                EstimatorField::Augmentation => "estimator.tuning.augmentation",
             },
             Self::Association(f) => match f {
                 AssociationField::Kind => "association",

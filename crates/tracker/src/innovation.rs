@@ -88,7 +88,11 @@ pub(crate) fn gate_box(pred: &Gaussian<4>, gamma: f64, r_max: [f64; 2]) -> (Vect
 /// and `|Δθ| ≤ b = √(γ S_θθ)`, so a raw plot is within `a + r̂ min(b, 2)` of the
 /// prediction (`r̂ |2 sin(Δθ/2)| ≤ r̂ min(|Δθ|, 2)`), and the unbiased conversion moves it
 /// outwards by `r (1/λ − 1)` more, `r ≤ r̂ + a`.
-pub(crate) fn polar_half(mp: &MeasurementPrediction<4, 2>, gamma: f64, stretch: f64) -> f64 {
+pub(crate) fn polar_half<const N: usize>(
+    mp: &MeasurementPrediction<N, 2>,
+    gamma: f64,
+    stretch: f64,
+) -> f64 {
     let s = mp.s();
     let a = (gamma * s[(0, 0)]).sqrt();
     let b = (gamma * s[(1, 1)]).sqrt();

@@ -9,8 +9,10 @@
 //! `[x, vx, y, vy]`, chosen by [`TrackerConfig::estimator`]: a Kalman filter
 //! ([`argus_filters::Kf`] on [`argus_motion_models::Cv2D`]), an EKF updated with the
 //! polar plots themselves ([`argus_filters::Ekf`], [`argus_sensors::Polar2D`]), a two-mode
-//! CV IMM ([`argus_imm::Imm`]), or seed 000's multi-IMM measurement-noise estimator
-//! ([`argus_imm::MultiImm`], its `R` estimate on [`Track::noise_estimate`]).
+//! CV IMM ([`argus_imm::Imm`]), seed 000's multi-IMM measurement-noise estimator
+//! ([`argus_imm::MultiImm`], its `R` estimate on [`Track::noise_estimate`]), or the
+//! aircraft IMM ([`argus_imm::AircraftImm`]: two CV modes and a coordinated turn with the
+//! turn rate as a state, its estimate on [`Track::turn_rate`]).
 //!
 //! Polar plots are converted once per scan by the unbiased conversion
 //! ([`argus_sensors::convert_polar`], Mo Longbin et al. 1998) plus the sensor position:
@@ -20,7 +22,10 @@
 //! likelihoods are divided by the Jacobian `r` of the polar map so that they are per m²
 //! like the clutter density. The multi-IMM gates on the plot converted with the
 //! configured noise and updates each of its IMMs with the plot converted with that IMM's
-//! hypothesis.
+//! hypothesis. The aircraft IMM gates in `(r, θ)` per mode (a plot in any mode's gate,
+//! at its smallest normalised distance; likelihood `Σⱼ μ̄ⱼ N(νⱼ; 0, Sⱼ) / r`) and updates
+//! every mode with the polar plot itself; its tracks start from the initiation's
+//! two-point estimate with the CT mode's turn-rate prior.
 //!
 //! # One scan
 //! 1. Every live track is predicted to the scan time.
@@ -48,6 +53,8 @@
 //!    `μ_r = μ̄_r (β₀ + Σ_j β_j N_r,j / N_j)`, the mode likelihood summed over the plot
 //!    events (Blom & Bloem, IEEE Trans. AC 45(2), 2000; Bar-Shalom, Willett & Tian,
 //!    *Tracking and Data Fusion*, 2011). With identical modes it is JPDA with the KF.
+//!    The aircraft IMM ([`EstimatorConfig::Aircraft`]) does the same with its three
+//!    modes' polar EKF updates and the `(r, θ)` mixture likelihood per m².
 //!    The solver is the [`lsap`] crate: SciPy's `linear_sum_assignment` algorithm
 //!    (Crouse's shortest augmenting path form of Jonker–Volgenant) on `f64` costs and
 //!    rectangular matrices. `pathfinding::kuhn_munkres`, the best-known Rust solver,
@@ -71,11 +78,67 @@
 //!    differencing ([`argus_filters::two_point_cv2`]). Plots still unused wait as
 //!    first points.
 //!
+//! # One sector (rotating radars)
+//! A sensor with a [`Rotation`] ([`SensorConfig::with_rotation`]) is a rotating radar:
+//! its beam's azimuth is `β(t) = π/2 ∓ 2π (t − north_time) / period` (Argus's azimuth,
+//! counter-clockwise from east; − clockwise), and each plot has its own time, the time
+//! the beam crossed what it saw. Its plots are not scans: [`Tracker::process`] buffers
+//! them into **sectors**, time windows of [`TrackerConfig::sector_fraction`] × period
+//! aligned to `north_time` (`[north_time + k L, north_time + (k + 1) L)`), and processes
+//! a sector when a plot (of any sensor) at or after its end arrives, or on
+//! [`Tracker::advance_to`] (time passed with no plot, e.g. a sector or north marker)
+//! and [`Tracker::flush`] (the end of a stream: up to the last time seen). Sectors in
+//! which nothing can happen (no plot, no track swept) are skipped without a report.
+//! 1. **Which tracks.** For each live track the beam's crossing time `t_c` of its
+//!    azimuth (extrapolated on its mean velocity, refined twice) and the half-time
+//!    `τ` the beam takes to sweep its gate (the gate's bounding circle
+//!    `√(γ (tr P_pos(t_c) + R))` seen from the radar, `R` the larger of the sector's
+//!    plots' and the radar's noise at that range). A track takes part in the sector when
+//!    the sweep starts before the sector's end, `t_c − τ < t_end`, and it has had no
+//!    opportunity from this radar in the last half revolution (so at most one per
+//!    revolution: once updated or missed, it waits until the beam comes round).
+//! 2. **Gating and association** as in a scan (steps 2–3 below): one global GNN (or
+//!    JPDA) over the sector's plots and those tracks, each predicted to its own `t_c`.
+//! 3. **Update, miss or carry.** A track assigned a plot is predicted to the plot's own
+//!    time and updated with it (JPDA: its mixture at `t_c`). A track with no plot
+//!    **misses only when the beam has left its gate within the sector**
+//!    (`t_c + τ < t_end`), never because of another target's plot; otherwise its gate
+//!    straddles the sector's end and it is carried to the next sector untouched.
+//!    Confirmation and deletion count these opportunities as a scan counts its own.
+//! 4. **Initiation** pairs the unused plots with unused plots at least half a
+//!    revolution older (from an earlier revolution), each at its own time in the
+//!    velocity gate; the new track's time is its second plot's.
+//!
+//! **Several radars.** Plots of several sensors, rotating or not, interleave in one
+//! time-ordered stream. Before a plot at `t` is taken, every sector (of any rotating
+//! sensor) ending at or before `t` is processed, in order of their ends; a synchronous
+//! sensor's plots form their scan at `t` after that. A sector is therefore processed
+//! only when every plot before its end has arrived. Sectors of two radars overlap in
+//! time, so a track updated by radar A's sector at `t_a` may be offered a plot of radar
+//! B's later-ending sector taken before `t_a`: a track is never predicted backwards, such
+//! a plot updates it at its own time `t_a` (a lag of at most one sector of B; sectors of
+//! 1/8 revolution keep it under 0.7 s for a 5-s radar). Each sector yields a
+//! [`ScanReport`] with its span (`start`, `time`), its sensor, and the tracks it
+//! `visited` (updated or missed).
+//!
+//! The densities of [`ScoreConfig`] and [`AssociationConfig::Jpda`] are per scan: for a
+//! rotating radar, per revolution (a track has one opportunity per revolution). A target
+//! that passes over the radar, whose azimuth turns by about π between two sweeps, can be
+//! swept twice within half a revolution: the second is not an opportunity (one row less).
+//! Cost: each sector computes the beam crossing only of the tracks that may be due (a
+//! track remembers, per rotating sensor, until when no sector sweeps its gate, as long as
+//! its estimate is unchanged); the rest is the scan's work on the sector's plots and
+//! those tracks (`tracker_sector_step` in `docs/BENCHMARKS.md`).
+//!
+//! Rotating sensors are not built with the multi-IMM estimator (refused by the
+//! configuration), and their plots do not go through [`Tracker::process_scan`].
+//!
 //! # Bad input
 //! A plot with a non-finite value, a negative range or a covariance that is not symmetric
 //! positive definite cannot be built ([`Plot`]'s constructors refuse it). Plots out of
 //! time order, from a sensor not in the configuration, polar plots with a zero range or
-//! from a sensor without polar noise, 3-D plots, Cartesian plots for the multi-IMM, and
+//! from a sensor without polar noise, 3-D plots, Cartesian plots for the multi-IMM or the
+//! aircraft IMM, and
 //! bad configurations give a
 //! [`TrackerError`] that names the plot (index, time, sensor) or the field. All plots are checked before any track is touched, so
 //! a rejected call leaves the tracker unchanged. A track whose filter step fails
@@ -83,9 +146,13 @@
 //!
 //! # API for the CLI
 //! Build a [`TrackerConfig`] (public fields, validated by [`Tracker::new`]), then feed
-//! plots with [`Tracker::process`] (a stream; consecutive plots of one time and sensor
-//! form a scan) or [`Tracker::process_scan`] (one scan, possibly empty). Each returns
-//! [`ScanReport`]s (ids initiated, confirmed, deleted). After each scan,
+//! plots with [`Tracker::process`] (a stream; consecutive plots of one time and
+//! synchronous sensor form a scan, a rotating sensor's go into its sectors) or
+//! [`Tracker::process_scan`] (one synchronous scan, possibly empty), and with rotating
+//! sensors [`Tracker::advance_to`] and [`Tracker::flush`] ([`Tracker::next_sector_end`]
+//! says when the next sector closes, so a caller can step sector by sector). Each
+//! returns [`ScanReport`]s (ids initiated, confirmed, deleted; for a sector, the tracks
+//! visited). After each scan,
 //! [`Tracker::tracks`] gives every live track's id, [`TrackStatus`] and estimate, and
 //! [`Tracker::deleted`] / [`Tracker::take_deleted`] the deleted ones with their
 //! [`DeletionReason`]: enough for `argus track --config` to write every track's states
@@ -93,10 +160,11 @@
 //! `argus_sim::Ospa`, `Gospa` and `TrackStatistics`.
 //!
 //! # Not yet here
-//! Coordinated-turn modes in the per-track IMM; JPDA with the multi-IMM (refused by the
-//! configuration); the multi-IMM with Cartesian plots (refused per plot) and with one
-//! noise estimate per sensor (all sensors feeding a track share its estimate); 3-D
-//! (spherical) plots.
+//! JPDA with the multi-IMM (refused by the configuration); the
+//! multi-IMM and the aircraft IMM with Cartesian plots (refused per plot); the multi-IMM
+//! with one noise estimate per sensor (all sensors feeding a track share its estimate);
+//! 3-D (spherical) plots. (The two-mode IMM [`EstimatorConfig::ImmCv2`] has CV modes
+//! only; coordinated turns are the aircraft IMM's, [`EstimatorConfig::Aircraft`].)
 //!
 //! # Example
 //! ```
@@ -118,6 +186,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod aircraft;
 mod assign;
 mod config;
 mod error;
@@ -129,10 +198,14 @@ mod jpda;
 mod management;
 mod pda;
 mod plot;
+mod rotation;
 mod state;
 mod track;
 mod tracker;
 
+/// The aircraft IMM's tuning and mixing rule (from `argus-imm`), re-exported for
+/// [`EstimatorConfig::Aircraft`].
+pub use argus_imm::{AircraftTuning, Augmentation};
 /// The plot vocabulary the tracker takes (from `argus-sensors`), re-exported.
 pub use argus_sensors::{Plot, SensorId};
 pub use config::{
@@ -140,6 +213,7 @@ pub use config::{
 };
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
-pub use state::MULTI_IMM_HYPOTHESES;
+pub use rotation::{Rotation, RotationDirection};
+pub use state::{MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};

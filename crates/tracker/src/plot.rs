@@ -2,7 +2,7 @@
 //! or polar), and the configured sensors they come from.
 
 use argus_core_math::{Matrix, Vector};
-use argus_imm::{NoiseVariances, UnbiasedConversion};
+use argus_imm::{AircraftRadar, NoiseVariances, UnbiasedConversion};
 use argus_sensors::{
     CartesianPosition, ConversionMethod, Measurement, Plot, Polar2D, RadarNoise, SensorId, Sigmas,
     convert_polar,
@@ -43,6 +43,17 @@ pub(crate) struct PolarModel {
     /// `1/λ − 1`, `λ = e^{−σ_θ²/2}`: how far (relative to the range) the unbiased
     /// conversion moves a plot outwards.
     pub(crate) conversion_stretch: f64,
+    /// The aircraft IMM's measurement models at the sensor (both state sizes).
+    pub(crate) aircraft: AircraftRadar,
+}
+
+/// Whether an estimator takes Cartesian plots, and if not, its name for the error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum CartesianPlots {
+    /// Cartesian plots are used as they are.
+    Accepted,
+    /// Only polar plots: the estimator's name.
+    Refused(&'static str),
 }
 
 impl SensorModel {
@@ -65,12 +76,15 @@ impl SensorModel {
                     .map_err(|_| bad("the conversion rejected it"))?;
                 let reference = NoiseVariances::from_sigmas(n.sigma_range, n.sigma_azimuth)
                     .map_err(|_| bad("not valid standard deviations"))?;
+                let aircraft = AircraftRadar::new(cfg.position, RadarNoise::Constant(sig))
+                    .map_err(|_| bad("the aircraft IMM's polar model rejected it"))?;
                 Some(PolarModel {
                     sigmas: [n.sigma_range, n.sigma_azimuth],
                     model,
                     conversion,
                     reference,
                     conversion_stretch: (0.5 * n.sigma_azimuth * n.sigma_azimuth).exp() - 1.0,
+                    aircraft,
                 })
             }
         };
@@ -82,12 +96,12 @@ impl SensorModel {
     }
 
     /// Checks one plot of this sensor (time and order already checked) and makes its scan
-    /// point; `cartesian_ok` is false for an estimator that needs polar plots.
+    /// point; `cartesian` says whether the estimator takes Cartesian plots.
     pub(crate) fn point(
         &self,
         index: usize,
         plot: &Plot,
-        cartesian_ok: bool,
+        cartesian: CartesianPlots,
     ) -> Result<ScanPoint, TrackerError> {
         // The plot's values are finite and its covariance positive definite by
         // construction (argus_sensors::Plot); what is checked here is what the tracker
@@ -95,11 +109,12 @@ impl SensorModel {
         let (time, sensor) = (plot.time(), plot.sensor());
         let (position, covariance, polar) = match plot.measurement() {
             Measurement::Cartesian2(c) => {
-                if !cartesian_ok {
+                if let CartesianPlots::Refused(estimator) = cartesian {
                     return Err(TrackerError::NotPolar {
                         index,
                         time,
                         sensor,
+                        estimator,
                     });
                 }
                 (*c.position(), *c.covariance(), None)
@@ -223,7 +238,7 @@ mod tests {
                     continue;
                 }
                 let plot = Plot::polar(0.0, SensorId(0), z[0], z[1]).unwrap();
-                let point = sensor.point(0, &plot, true).unwrap();
+                let point = sensor.point(0, &plot, CartesianPlots::Accepted).unwrap();
                 let d = point.position - Vector::<2>::new(mean[0], mean[2]);
                 assert!(
                     d[0].abs() <= half && d[1].abs() <= half,

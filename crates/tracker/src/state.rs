@@ -1,12 +1,52 @@
 //! Each track's estimator state, one variant per kind of [`crate::estimator::Estimator`].
 
-use argus_imm::{ImmEstimate, MultiImmEstimate, NoiseVariances};
+use argus_imm::{AircraftEstimate, ImmEstimate, MultiImmEstimate, NoiseVariances};
 
 /// Number of noise hypotheses `K` of [`crate::EstimatorConfig::MultiImm`] (seed 000: 5).
 pub const MULTI_IMM_HYPOTHESES: usize = 5;
 
 /// A track's multi-IMM state (boxed in the track: it is large).
 pub(crate) type MultiState = MultiImmEstimate<4, 2, MULTI_IMM_HYPOTHESES>;
+
+/// A track's aircraft-IMM state: two CV modes and the CT mode (boxed in the track: at
+/// 584 bytes it would almost double every other estimator's track if it were inline).
+pub(crate) type AircraftState = AircraftEstimate<2, 3>;
+
+/// The most modes a track's estimator has (the aircraft IMM's three).
+const MAX_MODES: usize = 3;
+
+/// A track's IMM mode probabilities, in the estimator's mode order: (quiet, manoeuvre)
+/// for [`crate::EstimatorConfig::ImmCv2`] and [`crate::EstimatorConfig::MultiImm`],
+/// (CV quiet, CV manoeuvre, CT) for [`crate::EstimatorConfig::Aircraft`]. Read it as a
+/// slice (`Deref<Target = [f64]>`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModeProbabilities {
+    mu: [f64; MAX_MODES],
+    len: usize,
+}
+
+impl ModeProbabilities {
+    /// The first [`MAX_MODES`] of `p` (every estimator here has at most that many).
+    fn of(p: &[f64]) -> Self {
+        let len = p.len().min(MAX_MODES);
+        let mut mu = [0.0; MAX_MODES];
+        mu[..len].copy_from_slice(&p[..len]);
+        Self { mu, len }
+    }
+
+    /// The probabilities as a slice.
+    #[must_use]
+    pub fn as_slice(&self) -> &[f64] {
+        &self.mu[..self.len]
+    }
+}
+
+impl std::ops::Deref for ModeProbabilities {
+    type Target = [f64];
+    fn deref(&self) -> &[f64] {
+        self.as_slice()
+    }
+}
 
 /// What a track's estimator keeps between scans besides the track's (combined) estimate.
 ///
@@ -22,23 +62,35 @@ pub(crate) enum TrackState {
     Imm(ImmEstimate<4, 2>),
     /// The multi-IMM's hypotheses and noise reference.
     Multi(Box<MultiState>),
+    /// The aircraft IMM's modes and probabilities (between the prediction and the update
+    /// of a scan: the predicted modes, with `μ̄` as probabilities).
+    Aircraft(Box<AircraftState>),
 }
 
 impl TrackState {
-    /// The mode probabilities (quiet, manoeuvre) of an IMM or multi-IMM state.
-    pub(crate) fn mode_probabilities(&self) -> Option<[f64; 2]> {
+    /// The mode probabilities of an IMM, multi-IMM or aircraft-IMM state.
+    pub(crate) fn mode_probabilities(&self) -> Option<ModeProbabilities> {
         match self {
             Self::Single => None,
-            Self::Imm(imm) => Some(imm.mode_probabilities()),
-            Self::Multi(m) => Some(m.mode_probabilities()),
+            Self::Imm(imm) => Some(ModeProbabilities::of(&imm.mode_probabilities())),
+            Self::Multi(m) => Some(ModeProbabilities::of(&m.mode_probabilities())),
+            Self::Aircraft(a) => Some(ModeProbabilities::of(&a.mode_probabilities())),
         }
     }
 
     /// The multi-IMM's measurement-noise reference.
     pub(crate) fn noise_estimate(&self) -> Option<NoiseVariances> {
         match self {
-            Self::Single | Self::Imm(_) => None,
+            Self::Single | Self::Imm(_) | Self::Aircraft(_) => None,
             Self::Multi(m) => Some(*m.reference()),
+        }
+    }
+
+    /// The aircraft IMM's CT-mode turn rate and its standard deviation (rad/s).
+    pub(crate) fn turn_rate(&self) -> Option<(f64, f64)> {
+        match self {
+            Self::Aircraft(a) => Some(a.turn_rate()),
+            Self::Single | Self::Imm(_) | Self::Multi(_) => None,
         }
     }
 }

@@ -3,7 +3,7 @@
 use argus_core_math::Gaussian;
 use argus_imm::NoiseVariances;
 
-use crate::state::TrackState;
+use crate::state::{ModeProbabilities, TrackState};
 
 /// A track's id: numbered from 0 in order of initiation and never reused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -53,6 +53,33 @@ pub struct Track {
     pub(crate) score: f64,
     pub(crate) peak_score: f64,
     pub(crate) state: TrackState,
+    /// Per sensor index, what rotating sensors know of this track (empty until one
+    /// looks at it; missing entries: never looked at).
+    pub(crate) looks: Vec<Look>,
+    /// Incremented at every change of the estimate (so that a [`Look`]'s hint computed
+    /// from an older estimate is not used).
+    pub(crate) revision: u64,
+}
+
+/// A rotating sensor's memory of one track.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Look {
+    /// The time of its last opportunity from the sensor (−∞: none yet).
+    pub(crate) visited: f64,
+    /// No sector ending at or before this time sweeps its gate (valid for
+    /// [`Look::revision`] only).
+    pub(crate) quiet_until: f64,
+    /// The track's revision when `quiet_until` was computed.
+    pub(crate) revision: u64,
+}
+
+impl Look {
+    /// Nothing known.
+    pub(crate) const NONE: Self = Self {
+        visited: f64::NEG_INFINITY,
+        quiet_until: f64::NEG_INFINITY,
+        revision: u64::MAX,
+    };
 }
 
 impl Track {
@@ -117,11 +144,20 @@ impl Track {
         self.last_hit
     }
 
-    /// The IMM mode probabilities (quiet, manoeuvre) when the estimator is an IMM or a
-    /// multi-IMM (for the latter `Σₘ νᵐ μⱼᵐ`).
+    /// The IMM mode probabilities when the estimator is an IMM (quiet, manoeuvre), a
+    /// multi-IMM (the same, `Σₘ νᵐ μⱼᵐ`) or the aircraft IMM (CV quiet, CV manoeuvre,
+    /// CT).
     #[must_use]
-    pub fn mode_probabilities(&self) -> Option<[f64; 2]> {
+    pub fn mode_probabilities(&self) -> Option<ModeProbabilities> {
         self.state.mode_probabilities()
+    }
+
+    /// The aircraft IMM's turn-rate estimate and its standard deviation (rad/s,
+    /// counter-clockwise positive): the CT mode's `ω̂` and `√P_ωω`, conditional on the
+    /// CT mode ([`crate::EstimatorConfig::Aircraft`] only).
+    #[must_use]
+    pub fn turn_rate(&self) -> Option<(f64, f64)> {
+        self.state.turn_rate()
     }
 
     /// The multi-IMM's current measurement-noise estimate `(σ_r², σ_θ²)` (its reference

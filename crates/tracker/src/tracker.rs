@@ -9,6 +9,7 @@ use crate::assign::Edge;
 use crate::estimator::Estimator;
 use crate::grid::Grid;
 use crate::plot::{ScanPoint, SensorModel};
+use crate::state::TrackState;
 use crate::{
     AssociationConfig, DeletionReason, Plot, SensorId, Track, TrackId, TrackStatus, TrackerConfig,
     TrackerError,
@@ -16,12 +17,27 @@ use crate::{
 
 mod associate;
 mod initiate;
+mod sector;
 
-/// What one scan did.
-#[derive(Debug, Clone, PartialEq, Default)]
+use sector::{Role, SectorState};
+
+/// What one scan, or one sector of a rotating sensor, did.
+#[derive(Debug, Clone, PartialEq)]
 pub struct ScanReport {
-    /// The scan time (s).
+    /// The scan time (s); for a sector, the time up to which the beam was followed
+    /// (the sector's end, or the last time seen for [`Tracker::flush`]).
     pub time: f64,
+    /// The sector's start (s); the scan time for a synchronous scan.
+    pub start: f64,
+    /// The scan's or the sector's sensor.
+    pub sensor: SensorId,
+    /// Whether this is a sector of a rotating sensor (else a synchronous scan, in which
+    /// every live track takes part).
+    pub sector: bool,
+    /// Sectors only: the tracks that had their opportunity in it (updated by a plot or
+    /// missed), in id order, tracks initiated in it excluded. Empty for a synchronous
+    /// scan.
+    pub visited: Vec<TrackId>,
     /// Plots in the scan.
     pub plots: usize,
     /// Plots assigned to existing tracks.
@@ -32,6 +48,23 @@ pub struct ScanReport {
     pub confirmed: Vec<TrackId>,
     /// Tracks deleted in this scan.
     pub deleted: Vec<TrackId>,
+}
+
+impl ScanReport {
+    fn new(time: f64, sensor: SensorId) -> Self {
+        Self {
+            time,
+            start: time,
+            sensor,
+            sector: false,
+            visited: Vec::new(),
+            plots: 0,
+            assigned: 0,
+            initiated: Vec::new(),
+            confirmed: Vec::new(),
+            deleted: Vec::new(),
+        }
+    }
 }
 
 /// An unused plot waiting for a second one to start a track.
@@ -50,6 +83,11 @@ pub struct Tracker {
     sensors: Vec<SensorModel>,
     gate: Gate,
     time: Option<f64>,
+    /// The latest time accepted (plots, scans, [`Tracker::advance_to`]): what the next
+    /// plot must not precede.
+    latest: Option<f64>,
+    /// The rotating sensors' sectors (empty without rotating sensors).
+    sectors: Vec<SectorState>,
     next_id: u64,
     tracks: Vec<Track>,
     deleted: Vec<Track>,
@@ -69,6 +107,16 @@ pub struct Tracker {
     /// JPDA per track: (plot, β) pairs, and the score increment `ln(B + Σ G)`.
     jpda: Vec<Vec<(usize, f64)>>,
     jpda_dl: Vec<Option<f64>>,
+    /// A sector's plot times (parallel to `points`; empty in a synchronous scan).
+    point_times: Vec<f64>,
+    /// A sector's role of each track.
+    roles: Vec<Role>,
+    /// An IMM track's prediction to its plot's time.
+    modes: Vec<Option<ImmPrediction<4, 2>>>,
+    /// A sector's looked-at tracks' states before their look prediction, for the
+    /// estimators whose state becomes its prediction (aircraft IMM, multi-IMM): restored
+    /// before predicting again to the plot's own time, or when the track is carried.
+    saved: Vec<Option<TrackState>>,
 }
 
 impl Tracker {
@@ -86,12 +134,15 @@ impl Tracker {
             .collect::<Result<Vec<_>, _>>()?;
         let gate = Gate::from_probability(config.gate_probability, 2)?;
         let grid = Grid::new(config.grid_cell);
+        let sectors = SectorState::for_config(&config);
         Ok(Self {
             config,
             est,
             sensors,
             gate,
             time: None,
+            latest: None,
+            sectors,
             next_id: 0,
             tracks: Vec::new(),
             deleted: Vec::new(),
@@ -107,6 +158,10 @@ impl Tracker {
             edges: Vec::new(),
             jpda: Vec::new(),
             jpda_dl: Vec::new(),
+            point_times: Vec::new(),
+            roles: Vec::new(),
+            modes: Vec::new(),
+            saved: Vec::new(),
         })
     }
 
@@ -122,7 +177,7 @@ impl Tracker {
         &self.gate
     }
 
-    /// The time of the last scan processed.
+    /// The time of the last scan processed (for a sector: its [`ScanReport::time`]).
     #[must_use]
     pub fn time(&self) -> Option<f64> {
         self.time
@@ -193,7 +248,11 @@ impl Tracker {
     }
 
     /// Processes a time-ordered stream of plots: consecutive plots with the same time
-    /// and sensor form one scan. Every plot is checked before any track is touched.
+    /// and sensor form one scan of a synchronous sensor; a rotating sensor's plots are
+    /// buffered into its sectors, and a sector is processed when a plot (of any sensor)
+    /// at or after its end arrives (see the crate docs, "One sector"; the rest waits for
+    /// later plots, [`Tracker::advance_to`] or [`Tracker::flush`]). Every plot is checked
+    /// before any track is touched.
     ///
     /// A sensor scan with no plot at all still counts as a miss for every track; feed
     /// it with [`Tracker::process_scan`].
@@ -205,7 +264,7 @@ impl Tracker {
     /// [`TrackerError::NotPolar`], [`TrackerError::Conversion`] naming the first bad
     /// plot; the tracker is then unchanged.
     pub fn process(&mut self, plots: &[Plot]) -> Result<Vec<ScanReport>, TrackerError> {
-        let mut previous = self.time;
+        let mut previous = self.latest;
         for (index, plot) in plots.iter().enumerate() {
             self.check_plot(index, plot, previous)?;
             previous = Some(plot.time());
@@ -218,7 +277,16 @@ impl Tracker {
                 .iter()
                 .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
                 .count();
-            reports.push(self.process_scan(t, s, &plots[start..start + len])?);
+            let group = &plots[start..start + len];
+            if self.sectors.is_empty() {
+                reports.push(self.process_scan(t, s, group)?);
+            } else {
+                self.close_sectors(t, &mut reports);
+                match self.sector_of(s) {
+                    Some(i) => self.buffer(i, start, group)?,
+                    None => reports.push(self.process_scan(t, s, group)?),
+                }
+            }
             start += len;
         }
         Ok(reports)
@@ -244,7 +312,8 @@ impl Tracker {
         sensor: SensorId,
         plots: &[Plot],
     ) -> Result<ScanReport, TrackerError> {
-        let s = self.check_time_sensor(0, time, sensor, self.time)?;
+        let s = self.check_time_sensor(0, time, sensor, self.latest)?;
+        self.check_synchronous(time, s)?;
         let mut points = std::mem::take(&mut self.points);
         points.clear();
         for (index, plot) in plots.iter().enumerate() {
@@ -265,6 +334,7 @@ impl Tracker {
             }
         }
         self.points = points;
+        self.point_times.clear();
         self.scan_sensor = s;
         Ok(self.run_scan(time))
     }
@@ -273,11 +343,11 @@ impl Tracker {
     fn run_scan(&mut self, time: f64) -> ScanReport {
         let n_plots = self.points.len();
         let mut report = ScanReport {
-            time,
             plots: n_plots,
-            ..ScanReport::default()
+            ..ScanReport::new(time, self.sensors[self.scan_sensor].id)
         };
         self.time = Some(time);
+        self.latest = Some(self.latest.map_or(time, |l| l.max(time)));
         self.grid.rebuild(self.points.iter().map(|p| p.position));
         self.used.clear();
         self.used.resize(n_plots, false);
@@ -361,15 +431,15 @@ impl Tracker {
                 report.assigned += 1;
             }
             track.estimate = posterior;
+            track.revision = track.revision.wrapping_add(1);
             track.time = time;
-            if let Some(sc) = &self.config.score {
-                track.score += match (self.jpda_dl[k], log_likelihood) {
-                    (Some(dl), _) => dl,
-                    (None, Some(ll)) => (sc.p_detection / sc.clutter_density).ln() + ll,
-                    (None, None) => (1.0 - sc.p_detection * self.gate.p_gate()).ln(),
-                };
-                track.peak_score = track.peak_score.max(track.score);
-            }
+            add_score(
+                &self.config,
+                self.gate.p_gate(),
+                track,
+                self.jpda_dl[k],
+                log_likelihood,
+            );
             if let Some(event) = track.count(hit.is_some(), &self.config) {
                 match event {
                     TrackStatus::Confirmed => report.confirmed.push(track.id),
@@ -379,7 +449,7 @@ impl Tracker {
         }
 
         // 5. Initiate from unused plots.
-        self.initiate(time, &mut report);
+        self.initiate(time, None, &mut report);
 
         // Move the deleted tracks out.
         self.deleted.extend(
@@ -387,5 +457,25 @@ impl Tracker {
                 .extract_if(.., |t| t.status == TrackStatus::Deleted),
         );
         report
+    }
+}
+
+/// The track score's increment for one opportunity (with [`TrackerConfig::score`]): the
+/// JPDA increment `dl` when given, a hit's `ln(P_D / λ) + ln N`, or a miss's
+/// `ln(1 − P_D P_G)`.
+fn add_score(
+    config: &TrackerConfig,
+    p_gate: f64,
+    track: &mut Track,
+    dl: Option<f64>,
+    log_likelihood: Option<f64>,
+) {
+    if let Some(sc) = &config.score {
+        track.score += match (dl, log_likelihood) {
+            (Some(dl), _) => dl,
+            (None, Some(ll)) => (sc.p_detection / sc.clutter_density).ln() + ll,
+            (None, None) => (1.0 - sc.p_detection * p_gate).ln(),
+        };
+        track.peak_score = track.peak_score.max(track.score);
     }
 }

@@ -19,6 +19,8 @@ fn sensor_key(f: SensorField) -> &'static str {
         SensorField::Position => "position",
         SensorField::SigmaRange | SensorField::PolarNoise => "sigma_range",
         SensorField::SigmaAzimuth => "sigma_azimuth_deg",
+        SensorField::RevolutionPeriod => "revolution_period",
+        SensorField::NorthTime => "north_time",
         SensorField::Id => "id",
         _ => "id",
     }
@@ -76,6 +78,7 @@ pub(super) fn config_error(
             Place::Key("tracker.max_position_sigma", span(&t.max_position_sigma))
         }
         F::GridCell => Place::Key("tracker.grid_cell", span(&t.grid_cell)),
+        F::SectorFraction => Place::Key("tracker.sector_fraction", span(&t.sector_fraction)),
         F::Association(a) => match a {
             AssociationField::Kind => Place::Key("tracker.association", span(&t.association)),
             AssociationField::PDetection => Place::Key("tracker.p_detection", span(&t.p_detection)),
@@ -125,6 +128,32 @@ pub(super) fn config_error(
             EstimatorField::Clip => {
                 Place::Key("estimator.clip", est.clip.as_ref().map(Spanned::span))
             }
+            EstimatorField::CvSigmaA => Place::Key(
+                "estimator.cv_sigma_a",
+                est.cv_sigma_a.as_ref().map(Spanned::span),
+            ),
+            EstimatorField::CtSigmaA => Place::Key(
+                "estimator.ct_sigma_a",
+                est.ct_sigma_a.as_ref().map(Spanned::span),
+            ),
+            EstimatorField::CtSigmaOmega => Place::Key(
+                "estimator.ct_sigma_omega_deg",
+                est.ct_sigma_omega_deg.as_ref().map(Spanned::span),
+            ),
+            EstimatorField::Markov => {
+                Place::Key("estimator.markov", est.markov.as_ref().map(Spanned::span))
+            }
+            EstimatorField::StartSigmaOmega => Place::Key(
+                "estimator.start_sigma_omega_deg",
+                est.start_sigma_omega_deg.as_ref().map(Spanned::span),
+            ),
+            EstimatorField::StartMu => {
+                Place::Key("estimator.initial", est.initial.as_ref().map(Spanned::span))
+            }
+            EstimatorField::Augmentation => Place::Key(
+                "estimator.mixing_sigma_omega_deg",
+                est.mixing_sigma_omega_deg.as_ref().map(Spanned::span),
+            ),
             _ => Place::Key(field.key(), None),
         },
         F::Sensor(f) => Place::Sensor(f),
@@ -177,6 +206,16 @@ fn sensor_error(
                 .sigma_azimuth_deg
                 .as_ref()
                 .filter(|v| same(v.get_ref().to_radians()))
+                .map(Spanned::span),
+            SensorField::RevolutionPeriod => s
+                .revolution_period
+                .as_ref()
+                .filter(|v| same(*v.get_ref()))
+                .map(Spanned::span),
+            SensorField::NorthTime => s
+                .north_time
+                .as_ref()
+                .filter(|v| same(*v.get_ref()))
                 .map(Spanned::span),
             // A missing polar noise, a repeated id: the value is the sensor's id.
             _ => same(f64::from(id)).then(|| s.id.span()),

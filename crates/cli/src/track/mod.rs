@@ -5,7 +5,8 @@
 //! estimator checked once with every default filled in ([`spec`]); with a `[tracker]`
 //! table that is mapped onto the tracker's configuration ([`tracker_config`], whose
 //! errors [`errors`] maps back to the file's keys). The [`job`] is then one target
-//! ([`single`], [`single_imm`], started by the one two-point start of [`start`]) or the
+//! ([`single`], [`single_imm`], [`single_aircraft`], started by the one two-point start
+//! of [`start`] or, for the aircraft IMM, its own) or the
 //! multi-target tracker ([`multi`]); both write their rows through [`rows`].
 
 mod errors;
@@ -16,6 +17,7 @@ mod multi_smooth;
 mod rows;
 mod schema;
 mod single;
+mod single_aircraft;
 mod single_imm;
 mod smooth;
 mod spec;

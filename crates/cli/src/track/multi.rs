@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 
 use argus_sensors::Measurement;
 use argus_tracker::{
-    AssociationConfig, DeletionReason, EstimatorConfig, Plot, SensorId, Track, TrackStatus,
-    Tracker, TrackerConfig, TrackerError,
+    AssociationConfig, DeletionReason, EstimatorConfig, Plot, ScanReport, SensorId, Track,
+    TrackStatus, Tracker, TrackerConfig, TrackerError,
 };
 
 use super::geo::Reference;
@@ -35,14 +35,21 @@ pub(super) struct Files<'a> {
 }
 
 /// The tracks CSV's columns for a configuration: the IMMs add the mode probabilities,
-/// the multi-IMM its noise estimate, track-score management the score.
+/// the multi-IMM its noise estimate, the aircraft IMM its turn rate (before the score),
+/// track-score management the score.
 pub(super) fn columns(c: &TrackerConfig) -> Vec<Column> {
     let (modes, noise) = match c.estimator {
         EstimatorConfig::Kf | EstimatorConfig::Ekf => (0, false),
         EstimatorConfig::ImmCv2 { .. } => (2, false),
         EstimatorConfig::MultiImm { .. } => (2, true),
+        EstimatorConfig::Aircraft { .. } => (3, false),
     };
-    Column::tracker(modes, noise, c.score.is_some())
+    let mut cols = Column::tracker(modes, noise, c.score.is_some());
+    if matches!(c.estimator, EstimatorConfig::Aircraft { .. }) {
+        let at = cols.len() - usize::from(c.score.is_some());
+        cols.splice(at..at, Column::TURN_RATE);
+    }
+    cols
 }
 
 /// One row: the track's state at its time, as produced by the scan of `sensor`; with
@@ -61,8 +68,9 @@ pub(super) fn row(
     let mu = track.mode_probabilities();
     let p = Point::new(track.time(), track.estimate())
         .of_track(sensor.0, track.id().0, status_name(track.status()), reason)
-        .modes(mu.as_ref().map(<[f64; 2]>::as_slice))
+        .modes(mu.as_ref().map(|m| m.as_slice()))
         .noise(track.noise_estimate())
+        .turn_rate(track.turn_rate())
         .score(track.score());
     out.push(&p);
 }
@@ -172,6 +180,96 @@ struct Summary<'a> {
     smoothed_tracks: Option<usize>,
 }
 
+/// What the reports add up to, and the rows they give.
+struct Tally<'a> {
+    out: &'a mut TrackRows,
+    /// The smoothing recorder (`--smooth`): rows go there instead.
+    recorded: Option<&'a mut Recorded>,
+    counts: &'a mut Counts,
+    scans: usize,
+    assigned: usize,
+}
+
+impl Tally<'_> {
+    /// Counts one report (a scan or a sector) and writes its rows: every track of a
+    /// synchronous scan; the tracks a sector visited (updated or missed) and those it
+    /// deleted. In id order (live tracks are in id order; a deleted one goes in its
+    /// place).
+    fn record(&mut self, tracker: &mut Tracker, report: &ScanReport) {
+        self.scans += 1;
+        self.assigned += report.assigned;
+        let counts = &mut *self.counts;
+        counts.initiated += report.initiated.len();
+        counts.confirmed += report.confirmed.len();
+        counts.deleted += report.deleted.len();
+        let deleted = tracker.take_deleted();
+        for d in &deleted {
+            if let Some(r) = d.deletion() {
+                *counts.deleted_by_reason.entry(reason_name(r)).or_insert(0) += 1;
+            }
+            if d.confirmed_at().is_some() {
+                counts.deleted_after_confirmation += 1;
+            }
+        }
+        let mut all: Vec<&Track> = tracker
+            .tracks()
+            .iter()
+            .filter(|tr| {
+                !report.sector
+                    || report.visited.binary_search(&tr.id()).is_ok()
+                    || report.initiated.contains(&tr.id())
+            })
+            .chain(&deleted)
+            .collect();
+        all.sort_by_key(|tr| tr.id());
+        for tr in all {
+            row(self.out, self.recorded.as_deref_mut(), report.sensor, tr);
+        }
+    }
+}
+
+/// A configuration with a rotating sensor: the plots as one stream through
+/// [`Tracker::process`], stepping sector by sector ([`Tracker::next_sector_end`],
+/// [`Tracker::advance_to`]) so that each sector's rows show its tracks as it left them,
+/// and [`Tracker::flush`] at the end.
+fn run_stream(
+    tracker: &mut Tracker,
+    tally: &mut Tally<'_>,
+    files: &Files<'_>,
+    plots: &[FilePlot],
+    converted: &[Plot],
+) -> Result<(), CliError> {
+    let mut start = 0;
+    while start < converted.len() {
+        let (t, s) = (converted[start].time(), converted[start].sensor());
+        let len = converted[start..]
+            .iter()
+            .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
+            .count();
+        while let Some(end) = tracker.next_sector_end()
+            && end <= t
+        {
+            let reports = tracker
+                .advance_to(end)
+                .map_err(|e| plot_error(files, plots, start, e))?;
+            for r in &reports {
+                tally.record(tracker, r);
+            }
+        }
+        let reports = tracker
+            .process(&converted[start..start + len])
+            .map_err(|e| plot_error(files, plots, start, e))?;
+        for r in &reports {
+            tally.record(tracker, r);
+        }
+        start += len;
+    }
+    for r in &tracker.flush() {
+        tally.record(tracker, r);
+    }
+    Ok(())
+}
+
 /// The summary's path beside the tracks file: `<stem>.summary.json`.
 fn summary_path(out: &Path) -> PathBuf {
     out.with_extension("summary.json")
@@ -209,40 +307,31 @@ pub(super) fn run(
         deleted_by_reason: REASONS.iter().map(|r| (reason_name(*r), 0)).collect(),
         ..Counts::default()
     };
-    let (mut scans, mut assigned) = (0, 0);
-    let mut start = 0;
-    while start < converted.len() {
-        let (t, s) = (converted[start].time(), converted[start].sensor());
-        let len = converted[start..]
-            .iter()
-            .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
-            .count();
-        let report = tracker
-            .process_scan(t, s, &converted[start..start + len])
-            .map_err(|e| plot_error(files, plots, start, e))?;
-        scans += 1;
-        assigned += report.assigned;
-        counts.initiated += report.initiated.len();
-        counts.confirmed += report.confirmed.len();
-        counts.deleted += report.deleted.len();
-        let deleted = tracker.take_deleted();
-        for d in &deleted {
-            if let Some(r) = d.deletion() {
-                *counts.deleted_by_reason.entry(reason_name(r)).or_insert(0) += 1;
-            }
-            if d.confirmed_at().is_some() {
-                counts.deleted_after_confirmation += 1;
-            }
+    let mut tally = Tally {
+        out: &mut out,
+        recorded: recorded.as_mut(),
+        counts: &mut counts,
+        scans: 0,
+        assigned: 0,
+    };
+    if c.sensors.iter().any(|s| s.rotation.is_some()) {
+        run_stream(&mut tracker, &mut tally, files, plots, &converted)?;
+    } else {
+        let mut start = 0;
+        while start < converted.len() {
+            let (t, s) = (converted[start].time(), converted[start].sensor());
+            let len = converted[start..]
+                .iter()
+                .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
+                .count();
+            let report = tracker
+                .process_scan(t, s, &converted[start..start + len])
+                .map_err(|e| plot_error(files, plots, start, e))?;
+            tally.record(&mut tracker, &report);
+            start += len;
         }
-        // One row per track of this scan, in id order (live tracks are in id order; a
-        // deleted one goes in its place).
-        let mut all: Vec<&Track> = tracker.tracks().iter().chain(&deleted).collect();
-        all.sort_by_key(|tr| tr.id());
-        for tr in all {
-            row(&mut out, recorded.as_mut(), s, tr);
-        }
-        start += len;
     }
+    let (scans, assigned) = (tally.scans, tally.assigned);
     for tr in tracker.tracks() {
         match tr.status() {
             TrackStatus::Tentative => counts.tentative_at_end += 1,

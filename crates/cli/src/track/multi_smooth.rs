@@ -24,7 +24,9 @@ use argus_core_math::Gaussian;
 use argus_filters::Kf;
 use argus_imm::NoiseVariances;
 use argus_motion_models::Cv2D;
-use argus_tracker::{DeletionReason, EstimatorConfig, SensorId, Track, TrackStatus, TrackerConfig};
+use argus_tracker::{
+    DeletionReason, EstimatorConfig, ModeProbabilities, SensorId, Track, TrackStatus, TrackerConfig,
+};
 
 use super::multi::{Files, reason_name, status_name};
 use super::rows::{Point, TrackRows};
@@ -40,7 +42,7 @@ struct Row {
     reason: Option<DeletionReason>,
     time: f64,
     estimate: Gaussian<4>,
-    modes: Option<[f64; 2]>,
+    modes: Option<ModeProbabilities>,
     noise: Option<NoiseVariances>,
     score: f64,
 }
@@ -133,7 +135,7 @@ impl Recorded {
             let reason = r.reason.map_or("", reason_name);
             let p = Point::new(r.time, &r.estimate)
                 .of_track(r.sensor, r.track, status_name(r.status), reason)
-                .modes(r.modes.as_ref().map(<[f64; 2]>::as_slice))
+                .modes(r.modes.as_ref().map(|m| m.as_slice()))
                 .noise(r.noise)
                 .score(r.score)
                 .smoothed(s.as_ref());

@@ -39,6 +39,10 @@ pub(super) enum Column {
     SigmaAzimuthDeg,
     /// `score`: the track score.
     Score,
+    /// `turn_rate_deg`: the aircraft IMM's CT-mode turn rate (°/s).
+    TurnRateDeg,
+    /// `sigma_turn_rate_deg`: its standard deviation (°/s).
+    SigmaTurnRateDeg,
     /// `<component>s`: smoothed state component `i` (`xs`, `vxs`, …; `--smooth`).
     Smoothed(usize),
     /// `var_<component>s`: the smoothed covariance's diagonal entry `i`.
@@ -70,6 +74,8 @@ impl Column {
             Self::SigmaRange => "sigma_range".into(),
             Self::SigmaAzimuthDeg => "sigma_azimuth_deg".into(),
             Self::Score => "score".into(),
+            Self::TurnRateDeg => "turn_rate_deg".into(),
+            Self::SigmaTurnRateDeg => "sigma_turn_rate_deg".into(),
             Self::Smoothed(i) => format!("{}s", state(i)),
             Self::SmoothedVariance(i) => format!("var_{}s", state(i)),
             Self::SmoothedPositionSigma(a) => format!("sigma_{}s", state(2 * a)),
@@ -78,6 +84,9 @@ impl Column {
             Self::Lon => "lon".into(),
         }
     }
+
+    /// The aircraft IMM's turn-rate columns, after its mode probabilities.
+    pub(super) const TURN_RATE: [Self; 2] = [Self::TurnRateDeg, Self::SigmaTurnRateDeg];
 
     /// The single-target job's smoothed columns (`--smooth`): the smoothed state of
     /// `axes` axes, its variances and `modes` smoothed mode probabilities.
@@ -151,6 +160,7 @@ pub(super) struct Point<'a> {
     modes: Option<&'a [f64]>,
     noise: Option<NoiseVariances>,
     score: f64,
+    turn_rate: Option<(f64, f64)>,
     /// The smoothed estimate's mean and covariance (column-major), same dimension.
     smoothed: Option<(&'a [f64], &'a [f64])>,
     smoothed_modes: Option<&'a [f64]>,
@@ -171,6 +181,7 @@ impl<'a> Point<'a> {
             modes: None,
             noise: None,
             score: 0.0,
+            turn_rate: None,
             smoothed: None,
             smoothed_modes: None,
         }
@@ -217,6 +228,11 @@ impl<'a> Point<'a> {
     /// With the multi-IMM's noise estimate (`None`: empty cells).
     pub(super) fn noise(self, noise: Option<NoiseVariances>) -> Self {
         Self { noise, ..self }
+    }
+
+    /// With the aircraft IMM's turn rate and its σ, rad/s (`None`: empty cells).
+    pub(super) fn turn_rate(self, turn_rate: Option<(f64, f64)>) -> Self {
+        Self { turn_rate, ..self }
     }
 
     /// With a track score.
@@ -297,6 +313,8 @@ impl TrackRows {
                     cell(out, p.noise.map(|v| v.azimuth().sqrt().to_degrees()))
                 }
                 Column::Score => write!(out, "{}", p.score),
+                Column::TurnRateDeg => cell(out, p.turn_rate.map(|w| w.0.to_degrees())),
+                Column::SigmaTurnRateDeg => cell(out, p.turn_rate.map(|w| w.1.to_degrees())),
                 Column::Smoothed(i) => cell(out, p.smoothed.and_then(|(m, _)| m.get(i).copied())),
                 Column::SmoothedVariance(i) => cell(out, p.smoothed_var(i)),
                 Column::SmoothedPositionSigma(a) => cell(out, p.smoothed_var(2 * a).map(f64::sqrt)),

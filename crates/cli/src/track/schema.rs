@@ -39,7 +39,8 @@ pub(super) struct ReferenceTable {
 
 /// A `[[sensor]]`: id and position (`[x, y]` or `[x, y, z]`, or a WGS-84 `latitude,
 /// longitude, altitude` with a `[reference]`); polar sensors also their noise, spherical
-/// ones also the elevation noise.
+/// ones also the elevation noise; a rotating radar its revolution period, direction and
+/// north time (for the multi-target tracker).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SensorTable {
@@ -51,6 +52,19 @@ pub(super) struct SensorTable {
     pub(super) sigma_range: Option<Spanned<f64>>,
     pub(super) sigma_azimuth_deg: Option<Spanned<f64>>,
     pub(super) sigma_elevation_deg: Option<Spanned<f64>>,
+    pub(super) revolution_period: Option<Spanned<f64>>,
+    pub(super) rotation: Option<Spanned<RotationKind>>,
+    pub(super) north_time: Option<Spanned<f64>>,
+}
+
+/// `rotation` of a rotating `[[sensor]]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub(super) enum RotationKind {
+    /// North → east (the default).
+    Clockwise,
+    /// North → west.
+    Counterclockwise,
 }
 
 /// Estimator kinds.
@@ -65,6 +79,9 @@ pub(super) enum EstimatorKind {
     Imm,
     /// The multi-IMM measurement-noise estimator of seed 000 eqs (8)–(14) around that IMM.
     MultiImm,
+    /// The aircraft IMM (`argus_imm::AircraftImm`): two CV modes and a coordinated turn
+    /// with the turn rate as a state, EKFs on one radar's polar plots.
+    AircraftImm,
 }
 
 impl EstimatorKind {
@@ -75,6 +92,7 @@ impl EstimatorKind {
             Self::Ekf => "ekf",
             Self::Imm => "imm",
             Self::MultiImm => "multi-imm",
+            Self::AircraftImm => "aircraft-imm",
         }
     }
 }
@@ -102,6 +120,22 @@ pub(super) struct EstimatorTable {
     pub(super) p: Option<Spanned<f64>>,
     pub(super) clip: Option<Spanned<f64>>,
     pub(super) per_axis: Option<Spanned<bool>>,
+    pub(super) cv_sigma_a: Option<Spanned<Vec<f64>>>,
+    pub(super) ct_sigma_a: Option<Spanned<f64>>,
+    pub(super) ct_sigma_omega_deg: Option<Spanned<f64>>,
+    pub(super) start_sigma_omega_deg: Option<Spanned<f64>>,
+    pub(super) mixing: Option<Spanned<Mixing>>,
+    pub(super) mixing_sigma_omega_deg: Option<Spanned<f64>>,
+}
+
+/// The aircraft IMM's mixing rule for the turn rate (`argus_imm::Augmentation`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub(super) enum Mixing {
+    /// Granström et al.'s unbiased rule.
+    Unbiased,
+    /// `ω = 0` with the standard deviation `mixing_sigma_omega_deg`.
+    Fixed,
 }
 
 /// One motion model of an IMM: `kind = "cv"` or `"ct"` (with `rate_deg`).
@@ -131,6 +165,7 @@ pub(super) struct TrackerTable {
     pub(super) max_misses: Option<Spanned<toml::Value>>,
     pub(super) max_position_sigma: Option<Spanned<toml::Value>>,
     pub(super) grid_cell: Option<Spanned<toml::Value>>,
+    pub(super) sector_fraction: Option<Spanned<toml::Value>>,
     pub(super) score: Option<Spanned<ScoreTable>>,
 }
 

@@ -1,16 +1,17 @@
 //! The single-target job: one estimator over every plot of the file, in order. 2-D plot
 //! files get a 2-D CV estimator (`[x, vx, y, vy]`), 3-D ones (spherical or Cartesian 3-D)
-//! a 3-D CV estimator; the IMMs ([`super::single_imm`]) are 2-D. One row per estimate.
+//! a 3-D CV estimator; the IMMs ([`super::single_imm`], [`super::single_aircraft`]) are
+//! 2-D. One row per estimate.
 
 use argus_core_math::Gaussian;
 use argus_filters::{SmoothingFilter, two_point_cv2, two_point_cv3};
 use argus_sensors::Measurement;
 
 use super::rows::{Column, Point, TrackRows};
-use super::single_imm;
 use super::smooth;
 use super::spec::Estimator;
 use super::start::{Converted, Ctx, TwoPoint, two_point};
+use super::{single_aircraft, single_imm};
 use crate::error::CliError;
 use crate::estimator::{
     cv_ekf, cv_kf, cv3_ekf, cv3_kf, polar, position, position3, spherical, step,
@@ -78,15 +79,25 @@ pub(super) fn run(
         (Estimator::MultiImm(spec, multi), false) => {
             single_imm::multi_imm(ctx, spec, *multi, plots)
         }
-        (Estimator::Imm(_) | Estimator::MultiImm(..), true) => Err(CliError::input(
+        (Estimator::Aircraft(_), _) if ctx.smoothing.is_some() => Err(CliError::input(
             ctx.config,
             None,
             Some("estimator.kind"),
-            format!(
-                "the IMM estimators track 2-D plots ([x, vx, y, vy]); {} holds 3-D plots",
-                ctx.plots_path.display()
-            ),
+            "--smooth / --smooth-lag: the aircraft IMM is not smoothed (no smoother across its \
+             unequal state sizes); the kinds that smooth are kf-converted, ekf and imm",
         )),
+        (Estimator::Aircraft(tuning), false) => single_aircraft::run(ctx, tuning, plots),
+        (Estimator::Imm(_) | Estimator::MultiImm(..) | Estimator::Aircraft(_), true) => {
+            Err(CliError::input(
+                ctx.config,
+                None,
+                Some("estimator.kind"),
+                format!(
+                    "the IMM estimators track 2-D plots ([x, vx, y, vy]); {} holds 3-D plots",
+                    ctx.plots_path.display()
+                ),
+            ))
+        }
         (Estimator::KfConverted(sa), true) => {
             let f = cv3_kf(*sa)?;
             track_loop(

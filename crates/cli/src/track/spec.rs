@@ -3,12 +3,15 @@
 //! single-target estimators use them as they are, the tracker maps them onto its own
 //! configuration ([`super::tracker_config`]).
 
-use argus_imm::PROBABILITY_SUM_TOL;
+use argus_imm::{AircraftTuning, Augmentation, PROBABILITY_SUM_TOL};
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
+use argus_tracker::{Rotation, RotationDirection};
 use toml::Spanned;
 
 use super::geo::{self, Reference};
-use super::schema::{EstimatorKind, EstimatorTable, ModelKind, SensorTable, Source};
+use super::schema::{
+    EstimatorKind, EstimatorTable, Mixing, ModelKind, RotationKind, SensorTable, Source,
+};
 use crate::error::CliError;
 
 /// A checked sensor.
@@ -21,6 +24,9 @@ pub(super) struct Sensor {
     pub(super) polar: Option<(f64, f64)>,
     /// Elevation σ (rad).
     pub(super) sigma_elevation: Option<f64>,
+    /// A rotating radar's beam (used by the multi-target tracker, whose configuration
+    /// checks its values; the single-target estimators take each plot at its time).
+    pub(super) rotation: Option<Rotation>,
 }
 
 /// A checked estimator: its kind and the CV model's white-acceleration σ (m/s²), or the
@@ -32,6 +38,7 @@ pub(super) enum Estimator {
     Ekf(f64),
     Imm(ImmSpec),
     MultiImm(ImmSpec, MultiSpec),
+    Aircraft(AircraftTuning<2, 3>),
 }
 
 /// The largest number of motion models an `argus track` IMM may have (the mode count is a
@@ -130,6 +137,7 @@ pub(super) fn sensors(
             position,
             polar,
             sigma_elevation,
+            rotation: rotation(src, id, s)?,
         });
     }
     Ok(sensors)
@@ -162,6 +170,37 @@ fn xy_position(src: Source<'_>, id: u32, p: &Spanned<Vec<f64>>) -> Result<[f64; 
     Ok(position)
 }
 
+/// A sensor's `revolution_period`, `rotation` (default clockwise) and `north_time`
+/// (default 0): the last two need the first.
+fn rotation(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<Rotation>, CliError> {
+    let Some(period) = &s.revolution_period else {
+        if let Some(r) = &s.rotation {
+            return Err(src.at(
+                r,
+                "rotation",
+                format!("sensor {id}: needs revolution_period"),
+            ));
+        }
+        if let Some(n) = &s.north_time {
+            return Err(src.at(
+                n,
+                "north_time",
+                format!("sensor {id}: needs revolution_period"),
+            ));
+        }
+        return Ok(None);
+    };
+    let direction = match s.rotation.as_ref().map(|r| *r.get_ref()) {
+        None | Some(RotationKind::Clockwise) => RotationDirection::Clockwise,
+        Some(RotationKind::Counterclockwise) => RotationDirection::Counterclockwise,
+    };
+    Ok(Some(Rotation {
+        period: *period.get_ref(),
+        direction,
+        north_time: s.north_time.as_ref().map_or(0.0, |n| *n.get_ref()),
+    }))
+}
+
 /// Checks `[estimator]` and fills in its defaults.
 ///
 /// # Errors
@@ -181,6 +220,7 @@ pub(super) fn estimator(src: Source<'_>, e: &EstimatorTable) -> Result<Estimator
         EstimatorKind::Ekf => Estimator::Ekf(sigma_a()?),
         EstimatorKind::Imm => Estimator::Imm(imm_spec(src, e)?),
         EstimatorKind::MultiImm => Estimator::MultiImm(imm_spec(src, e)?, multi_spec(src, e)?),
+        EstimatorKind::AircraftImm => Estimator::Aircraft(aircraft(src, e)?),
     })
 }
 
@@ -272,29 +312,118 @@ fn imm_spec(src: Source<'_>, e: &EstimatorTable) -> Result<ImmSpec, CliError> {
     check_markov(src, markov, n)?;
     let initial = match &e.initial {
         None => vec![1.0 / n as f64; n],
-        Some(v) => {
-            let mu = v.get_ref();
-            let sum: f64 = mu.iter().sum();
-            if mu.len() != n
-                || mu.iter().any(|p| !(0.0..=1.0).contains(p))
-                || (sum - 1.0).abs() > PROBABILITY_SUM_TOL
-            {
-                return Err(src.at(
-                    v,
-                    "initial",
-                    format!(
-                        "needs {n} probabilities (one per model) in [0, 1] summing to 1 (sum = {sum})"
-                    ),
-                ));
-            }
-            mu.clone()
-        }
+        Some(v) => check_initial(src, v, n)?.to_vec(),
     };
     Ok(ImmSpec {
         models: built,
         markov: markov.get_ref().clone(),
         initial,
     })
+}
+
+/// Checks `initial`: `n` probabilities in [0, 1] summing to 1 (within 1e-9).
+fn check_initial<'v>(
+    src: Source<'_>,
+    v: &'v Spanned<Vec<f64>>,
+    n: usize,
+) -> Result<&'v [f64], CliError> {
+    let mu = v.get_ref();
+    let sum: f64 = mu.iter().sum();
+    if mu.len() != n
+        || mu.iter().any(|p| !(0.0..=1.0).contains(p))
+        || (sum - 1.0).abs() > PROBABILITY_SUM_TOL
+    {
+        return Err(src.at(
+            v,
+            "initial",
+            format!("needs {n} probabilities (one per model) in [0, 1] summing to 1 (sum = {sum})"),
+        ));
+    }
+    Ok(mu)
+}
+
+/// A standard deviation that must be finite and positive (`to_rad`: given in degrees).
+fn positive(src: Source<'_>, field: &str, v: &Spanned<f64>, to_rad: bool) -> Result<f64, CliError> {
+    let x = *v.get_ref();
+    if x.is_finite() && x > 0.0 {
+        Ok(if to_rad { x.to_radians() } else { x })
+    } else {
+        Err(src.at(v, field, format!("{x} must be finite and positive")))
+    }
+}
+
+/// Checks the aircraft IMM's keys over `AircraftTuning::<2, 3>::default()`: every key is
+/// optional and replaces its default (degrees in the file, radians in the tuning).
+fn aircraft(src: Source<'_>, e: &EstimatorTable) -> Result<AircraftTuning<2, 3>, CliError> {
+    for (v, key) in [
+        (e.sigma_a.as_ref().map(Spanned::span), "sigma_a"),
+        (e.models.as_ref().map(Spanned::span), "models"),
+    ] {
+        if let Some(span) = v {
+            return Err(CliError::input(
+                src.path,
+                Some(src.line(&span)),
+                Some(key),
+                "not used by kind \"aircraft-imm\" (its modes are set by cv_sigma_a, ct_sigma_a, ct_sigma_omega_deg)",
+            ));
+        }
+    }
+    let mut t = AircraftTuning::<2, 3>::default();
+    if let Some(v) = &e.cv_sigma_a {
+        let [low, high] = v.get_ref().as_slice() else {
+            return Err(src.at(
+                v,
+                "cv_sigma_a",
+                format!(
+                    "needs 2 values (the two CV modes), not {}",
+                    v.get_ref().len()
+                ),
+            ));
+        };
+        if ![low, high].iter().all(|x| x.is_finite() && **x > 0.0) {
+            return Err(src.at(v, "cv_sigma_a", "values must be finite and positive (m/s²)"));
+        }
+        t.cv_sigma_a = [*low, *high];
+    }
+    if let Some(v) = &e.ct_sigma_a {
+        t.ct_sigma_a = positive(src, "ct_sigma_a", v, false)?;
+    }
+    if let Some(v) = &e.ct_sigma_omega_deg {
+        t.ct_sigma_omega = positive(src, "ct_sigma_omega_deg", v, true)?;
+    }
+    if let Some(v) = &e.start_sigma_omega_deg {
+        t.start_sigma_omega = positive(src, "start_sigma_omega_deg", v, true)?;
+    }
+    if let Some(m) = &e.markov {
+        check_markov(src, m, 3)?;
+        for (row, r) in t.markov.iter_mut().zip(m.get_ref()) {
+            row.copy_from_slice(r);
+        }
+    }
+    if let Some(v) = &e.initial {
+        t.start_mu.copy_from_slice(check_initial(src, v, 3)?);
+    }
+    let fixed = e
+        .mixing
+        .as_ref()
+        .is_some_and(|m| *m.get_ref() == Mixing::Fixed);
+    t.augmentation = match (&e.mixing_sigma_omega_deg, fixed) {
+        (Some(v), true) => Augmentation::Fixed {
+            sigma: positive(src, "mixing_sigma_omega_deg", v, true)?,
+        },
+        (None, true) => {
+            return Err(src.missing("mixing_sigma_omega_deg", "required by mixing = \"fixed\""));
+        }
+        (Some(v), false) => {
+            return Err(src.at(
+                v,
+                "mixing_sigma_omega_deg",
+                "used by mixing = \"fixed\" only",
+            ));
+        }
+        (None, false) => Augmentation::Unbiased,
+    };
+    Ok(t)
 }
 
 /// Checks the multi-IMM keys `n`, `p`, `clip`, `per_axis` (defaults:

@@ -120,6 +120,7 @@ impl Cx<'_> {
                 sigma_range,
                 sigma_azimuth,
             }),
+            rotation: s.rotation,
         }));
         c.gate_probability = self.number_or(
             t.gate_probability.as_ref(),
@@ -146,6 +147,11 @@ impl Cx<'_> {
             c.max_position_sigma,
         )?;
         c.grid_cell = self.number_or(t.grid_cell.as_ref(), "tracker.grid_cell", c.grid_cell)?;
+        c.sector_fraction = self.number_or(
+            t.sector_fraction.as_ref(),
+            "tracker.sector_fraction",
+            c.sector_fraction,
+        )?;
         if let Some(s) = &t.score {
             let s = s.get_ref();
             c.score = Some(ScoreConfig {
@@ -225,7 +231,7 @@ impl Cx<'_> {
     /// The per-track estimator: `kf-converted` is the tracker's KF, `ekf` its EKF, `imm`
     /// its two-mode CV IMM, `multi-imm` its multi-IMM around that IMM (five hypotheses on
     /// one common scale; grid spacing and clip as checked, defaults included, by
-    /// [`super::spec`]).
+    /// [`super::spec`]), `aircraft-imm` its aircraft IMM with the tuning checked there.
     fn estimator_into(&self, c: &mut TrackerConfig, estimator: &Estimator) -> Result<(), CliError> {
         let e = self.estimator;
         c.estimator = match estimator {
@@ -272,6 +278,7 @@ impl Cx<'_> {
                     clip: multi.clip,
                 }
             }
+            Estimator::Aircraft(tuning) => EstimatorConfig::Aircraft { tuning: *tuning },
         };
         Ok(())
     }

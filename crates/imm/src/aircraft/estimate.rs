@@ -3,6 +3,7 @@
 
 use argus_core_math::Gaussian;
 
+use super::estimator::AircraftPrediction;
 use super::mixing::kinematic_marginal;
 use crate::{ImmError, log_probabilities};
 
@@ -35,6 +36,15 @@ impl<const C: usize, const R: usize> AircraftEstimate<C, R> {
             ct,
             log_mu: log_mu.map(|l| l - ln_sum),
         })
+    }
+
+    /// The estimate as its own prediction, with no mixing and no motion: for a plot at
+    /// the same instant as the estimate (`dt = 0`), which [`super::AircraftImm::update`]
+    /// then applies to the modes as they are (`μ̄ = μ`). The inverse of
+    /// [`AircraftPrediction::into_estimate`].
+    #[must_use]
+    pub fn into_prediction(self) -> AircraftPrediction<C, R> {
+        AircraftPrediction { predicted: self }
     }
 
     /// The CV modes' estimates `x̂ⱼ, Pⱼ` (`[x, vx, y, vy]`).

@@ -28,7 +28,7 @@ pub struct AircraftImm<Fcv, Fct, const C: usize, const R: usize> {
 /// The mode-matched predictions of one cycle, before the plot is used.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AircraftPrediction<const C: usize, const R: usize> {
-    predicted: AircraftEstimate<C, R>,
+    pub(super) predicted: AircraftEstimate<C, R>,
 }
 
 impl<const C: usize, const R: usize> AircraftPrediction<C, R> {

@@ -96,5 +96,5 @@ pub use estimate::AircraftEstimate;
 pub use estimator::{AircraftImm, AircraftPrediction, AircraftUpdate};
 pub use mixing::Augmentation;
 pub use radar::AircraftRadar;
-pub use start::two_point_start;
+pub use start::{start_from_cv, two_point_start};
 pub use tuning::{AircraftEkf, AircraftTuning};

@@ -1,6 +1,6 @@
 //! Two-point start of the aircraft IMM with a turn-rate prior for the CT mode.
 
-use argus_core_math::Vector;
+use argus_core_math::{Gaussian, Vector};
 use argus_filters::{FilterError, two_point_cv2};
 
 use super::estimate::AircraftEstimate;
@@ -44,6 +44,24 @@ pub fn two_point_start<const C: usize, const R: usize>(
             source: other,
         },
     })?;
-    let ct = augmented(&cv, 0.0, sigma_omega * sigma_omega)?;
-    AircraftEstimate::new([cv; C], ct, mu)
+    start_from_cv(&cv, sigma_omega, mu)
+}
+
+/// The start from a two-point CV estimate `cv` already made (e.g. by a tracker's
+/// initiation from the same converted plots): every CV mode starts at `cv`, the CT mode
+/// at `cv` extended by `ω ~ N(0, sigma_omega²)`, independent of the kinematic part; mode
+/// probabilities `mu`. [`two_point_start`] is this after its own differencing.
+///
+/// # Errors
+/// [`ImmError::InvalidParameter`] for `sigma_omega` not finite and positive;
+/// [`ImmError::Math`] for a covariance that is not positive definite;
+/// [`ImmError::InvalidProbabilities`] for a bad `mu`.
+pub fn start_from_cv<const C: usize, const R: usize>(
+    cv: &Gaussian<4>,
+    sigma_omega: f64,
+    mu: [f64; R],
+) -> Result<AircraftEstimate<C, R>, ImmError> {
+    check_positive("start turn-rate sigma", sigma_omega)?;
+    let ct = augmented(cv, 0.0, sigma_omega * sigma_omega)?;
+    AircraftEstimate::new([*cv; C], ct, mu)
 }

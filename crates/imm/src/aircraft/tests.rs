@@ -2,6 +2,7 @@
 //! and a steady turn's rate found.
 
 use argus_core_math::Vector;
+use argus_filters::GaussianFilter;
 use argus_motion_models::{CoordinatedTurnRate, MotionModel};
 use argus_sensors::RadarNoise;
 
@@ -199,4 +200,33 @@ fn finds_the_rate_of_a_steady_turn() {
     let coast = pred.into_estimate();
     assert_eq!(coast, *pred.modes());
     assert!(coast.combined().is_ok());
+}
+
+#[test]
+fn a_plot_at_the_same_instant_updates_the_modes_as_they_are() {
+    // `into_prediction` is the estimate itself as a prediction (μ̄ = μ, no mixing, no
+    // motion): the round trip is exact, and updating it is the update of each mode's own
+    // estimate (checked on the CT mode against its filter alone; tolerance: round-off).
+    let tuning = AircraftTuning::<2, 3>::default();
+    let imm = tuning.build().unwrap();
+    let z = turn_plots(2.0, 4);
+    let r = radar();
+    let mut est = tuning.start(&r, &z[0], &z[1], 5.0).unwrap();
+    est = imm.step(&est, 5.0, &r, &z[2]).unwrap().estimate;
+    assert_eq!(est.into_prediction().into_estimate(), est);
+    let up = imm.update(&est.into_prediction(), &r, &z[3]).unwrap();
+    let (ct, _) = imm
+        .ct_filter()
+        .update(est.ct_mode(), r.ct(), &z[3])
+        .unwrap();
+    let d = (up.estimate.ct_mode().mean() - ct.mean()).norm();
+    assert!(d < 1e-9 * ct.mean().norm(), "{d}");
+    // The start from a CV estimate made elsewhere is `two_point_start`'s own.
+    let (p1, r1) = r.convert(&z[0]).unwrap();
+    let (p2, r2) = r.convert(&z[1]).unwrap();
+    let cv = argus_filters::two_point_cv2(&p1, &r1, &p2, &r2, 5.0).unwrap();
+    assert_eq!(
+        tuning.start_from_cv(&cv).unwrap(),
+        tuning.start(&r, &z[0], &z[1], 5.0).unwrap()
+    );
 }

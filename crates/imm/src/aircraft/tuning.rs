@@ -1,6 +1,6 @@
 //! The documented tuning of the aircraft IMM and the filters it builds.
 
-use argus_core_math::Vector;
+use argus_core_math::{Gaussian, Vector};
 use argus_filters::Ekf;
 use argus_motion_models::{CoordinatedTurnRate, Cv2D, MotionError};
 
@@ -8,7 +8,7 @@ use super::estimate::AircraftEstimate;
 use super::estimator::AircraftImm;
 use super::mixing::Augmentation;
 use super::radar::AircraftRadar;
-use super::start::two_point_start;
+use super::start::{start_from_cv, two_point_start};
 use crate::error::check_positive;
 use crate::{ImmError, MarkovMatrix};
 
@@ -120,5 +120,14 @@ impl<const C: usize, const R: usize> AircraftTuning<C, R> {
         dt: f64,
     ) -> Result<AircraftEstimate<C, R>, ImmError> {
         two_point_start(radar, z1, z2, dt, self.start_sigma_omega, self.start_mu)
+    }
+
+    /// The start from a two-point CV estimate already made, with this tuning's turn-rate
+    /// prior and mode probabilities ([`start_from_cv`]).
+    ///
+    /// # Errors
+    /// As [`start_from_cv`].
+    pub fn start_from_cv(&self, cv: &Gaussian<4>) -> Result<AircraftEstimate<C, R>, ImmError> {
+        start_from_cv(cv, self.start_sigma_omega, self.start_mu)
     }
 }

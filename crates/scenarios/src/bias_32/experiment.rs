@@ -210,7 +210,7 @@ impl ScenarioConfig {
 }
 
 /// Squared errors of one recorded sensor-0 track at sensor 0's plot times.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TrackRecord {
     /// The target (0-based).
     pub target: usize,
@@ -232,8 +232,8 @@ pub struct TrackRecord {
     pub nees_compensated: Vec<f64>,
 }
 
-/// What one Monte Carlo run produced.
-#[derive(Debug, Clone, Default, PartialEq)]
+/// What one Monte Carlo run produced (the scenario's per-run record, per cell).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RunRecord {
     /// Event times (s), after all plots of that time were processed.
     pub times: Vec<f64>,

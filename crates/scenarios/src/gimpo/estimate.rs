@@ -33,9 +33,10 @@ pub(super) fn paper_imm(omega_deg: f64) -> Result<PaperImm, ScenarioError> {
     Ok(Imm::new([cv, ct(omega_deg)?, ct(-omega_deg)?], pi)?)
 }
 
-/// Everything one run records, per step after the two initialising plots.
-#[derive(Debug, Clone, Default)]
-pub(super) struct RunOut {
+/// Everything one run records, per step after the two initialising plots: the per-run
+/// record of a split campaign (one JSON line).
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
+pub(crate) struct RunOut {
     /// Squared position error of the fixed-R IMM, per start factor.
     pub(super) fixed_se: [Vec<f64>; 5],
     /// Mode probabilities (CV, CT+, CT−) of the IMM with the true R.
@@ -110,7 +111,7 @@ impl RunInput<'_> {
 }
 
 /// The estimators of the campaign, built once from the parameters.
-pub(super) struct Estimators {
+pub(crate) struct Estimators {
     true_var: NoiseVariances,
     imm: PaperImm,
     multi: MultiImm<Kf<PlanarModel>, 4, 3, 5>,

@@ -1,69 +1,20 @@
 //! gimpo's report: the table rows, the per-step series and the figures of seed 000
 //! (Figs. 3–7) from the runs' records.
 
-use super::estimate::{RunOut, STARTS};
+use super::estimate::STARTS;
+use super::sums::Sums;
 use crate::error::ScenarioError;
 use crate::params::Params;
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
 
 /// Share of the time left out of the RMS (paper §3.4: the first 25 %).
-const WARMUP: f64 = 0.25;
+pub(super) const WARMUP: f64 = 0.25;
 /// Published / reference values: the independent re-implementation quoted in issue 4
 /// (100 runs, p = 0.1, ±5 % clip): final variance ratio from each start.
 const REFERENCE_RATIO: [f64; 5] = [0.98, 1.01, 1.03, 1.05, 1.07];
 
-/// The runs and the common plot times, with the statistics over them.
-pub(super) struct Stats<'a> {
-    /// Plot times after the two initialising plots (the same in every run).
-    pub(super) times: &'a [f64],
-    /// The runs' records.
-    pub(super) runs: &'a [RunOut],
-    /// First step of the RMS window (`t ≥ WARMUP × flight`).
-    first: usize,
-}
-
-impl<'a> Stats<'a> {
-    /// The statistics of `runs` over `times`, the RMS window from `WARMUP × t_end`.
-    pub(super) fn new(times: &'a [f64], runs: &'a [RunOut], t_end: f64) -> Self {
-        let first = times.iter().position(|t| *t >= WARMUP * t_end).unwrap_or(0);
-        Self { times, runs, first }
-    }
-
-    fn n_runs(&self) -> f64 {
-        self.runs.len() as f64
-    }
-
-    /// RMS over the runs and the steps of the window.
-    fn rms_tail(&self, get: &dyn Fn(&RunOut) -> &Vec<f64>) -> f64 {
-        let (mut s, mut n) = (0.0_f64, 0.0_f64);
-        for r in self.runs {
-            for v in get(r).iter().skip(self.first) {
-                s += v;
-                n += 1.0;
-            }
-        }
-        (s / n.max(1.0)).sqrt()
-    }
-
-    /// RMS over the runs, per step.
-    fn per_step_rms(&self, get: &dyn Fn(&RunOut) -> &Vec<f64>) -> Vec<f64> {
-        let n_runs = self.n_runs();
-        (0..self.times.len())
-            .map(|k| (self.runs.iter().filter_map(|r| get(r).get(k)).sum::<f64>() / n_runs).sqrt())
-            .collect()
-    }
-
-    /// Mean over the runs, per step, of one value of a run's per-step records.
-    fn mean_per_step(&self, get: &dyn Fn(&RunOut, usize) -> Option<f64>) -> Vec<f64> {
-        let n_runs = self.n_runs();
-        (0..self.times.len())
-            .map(|k| self.runs.iter().filter_map(|r| get(r, k)).sum::<f64>() / n_runs)
-            .collect()
-    }
-}
-
 /// Mean and sample standard deviation.
-fn mean_sd_last(vals: Vec<f64>) -> (f64, f64) {
+fn mean_sd_last(vals: &[f64]) -> (f64, f64) {
     let m = vals.iter().sum::<f64>() / vals.len().max(1) as f64;
     let v = vals.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (vals.len().max(2) - 1) as f64;
     (m, v.sqrt())
@@ -83,48 +34,25 @@ struct Means {
 }
 
 impl Means {
-    fn new(st: &Stats<'_>) -> Self {
+    fn new(st: &Sums) -> Self {
         let n_runs = st.n_runs();
-        let mu: Vec<[f64; 3]> = (0..st.times.len())
-            .map(|k| {
-                let mut m = [0.0; 3];
-                for r in st.runs {
-                    if let Some(v) = r.mu.get(k) {
-                        for (a, b) in m.iter_mut().zip(v) {
-                            *a += b / n_runs;
-                        }
-                    }
-                }
-                m
-            })
-            .collect();
-        let axis = |pick: fn(&RunOut, usize) -> &Vec<[f64; 2]>, c: usize| -> Vec<Vec<f64>> {
-            (0..5)
-                .map(|i| st.mean_per_step(&|r, k| pick(r, i).get(k).map(|v| v[c])))
-                .collect()
+        let mean = |v: &Vec<f64>| -> Vec<f64> { v.iter().map(|s| s / n_runs).collect() };
+        let axis = |v: &[[Vec<f64>; 2]; 5], c: usize| -> Vec<Vec<f64>> {
+            v.iter().map(|a| mean(&a[c])).collect()
         };
-        fn vb(r: &RunOut, i: usize) -> &Vec<[f64; 2]> {
-            &r.vb_ratio[i]
-        }
-        fn ev(r: &RunOut, i: usize) -> &Vec<[f64; 2]> {
-            &r.ev_ratio[i]
-        }
-        fn df(r: &RunOut, i: usize) -> &Vec<[f64; 2]> {
-            &r.df_ratio[i]
-        }
         Self {
-            mu,
-            ratios: (0..5)
-                .map(|i| st.mean_per_step(&|r, k| r.multi_ratio[i].get(k).copied()))
-                .collect(),
-            vb_r: axis(vb, 0),
-            vb_a: axis(vb, 1),
-            ev_r: axis(ev, 0),
-            ev_a: axis(ev, 1),
-            df_r: axis(df, 0),
-            df_a: axis(df, 1),
-            fixed_rms: (0..5)
-                .map(|i| st.per_step_rms(&|r| &r.fixed_se[i]))
+            mu: st.step_mu.clone(),
+            ratios: st.step_multi.iter().map(mean).collect(),
+            vb_r: axis(&st.step_vb, 0),
+            vb_a: axis(&st.step_vb, 1),
+            ev_r: axis(&st.step_ev, 0),
+            ev_a: axis(&st.step_ev, 1),
+            df_r: axis(&st.step_df, 0),
+            df_a: axis(&st.step_df, 1),
+            fixed_rms: st
+                .step_fixed
+                .iter()
+                .map(|v| v.iter().map(|s| (s / n_runs).sqrt()).collect())
                 .collect(),
         }
     }
@@ -134,15 +62,11 @@ impl Means {
 ///
 /// # Errors
 /// A parameter that is not declared (a bug, reported).
-pub(super) fn report(
-    p: &Params,
-    clip: Option<f64>,
-    st: &Stats<'_>,
-) -> Result<Report, ScenarioError> {
+pub(super) fn report(p: &Params, clip: Option<f64>, st: &Sums) -> Result<Report, ScenarioError> {
     let means = Means::new(st);
     Ok(Report {
         rows: rows(p, clip, st)?,
-        series: vec![series(st.times, &means)],
+        series: vec![series(&st.times, &means)],
         figures: figures(st, &means),
         notes: NOTES.iter().map(|n| (*n).to_owned()).collect(),
     })
@@ -151,9 +75,8 @@ pub(super) fn report(
 /// The table: fixed R, then the multi-IMM, variational, evidence and difference
 /// estimators from each start.
 #[allow(clippy::too_many_lines)]
-fn rows(p: &Params, clip: Option<f64>, st: &Stats<'_>) -> Result<Vec<Row>, ScenarioError> {
-    let runs = st.runs;
-    let true_rms = st.rms_tail(&|r| &r.fixed_se[2]);
+fn rows(p: &Params, clip: Option<f64>, st: &Sums) -> Result<Vec<Row>, ScenarioError> {
+    let true_rms = Sums::rms(st.tail_fixed[2]);
     let mut rows = Vec::new();
     let row = |key: String,
                quantity: String,
@@ -171,7 +94,7 @@ fn rows(p: &Params, clip: Option<f64>, st: &Stats<'_>) -> Result<Vec<Row>, Scena
         note,
     };
     for (i, f) in STARTS.iter().enumerate() {
-        let fixed = st.rms_tail(&|r| &r.fixed_se[i]);
+        let fixed = Sums::rms(st.tail_fixed[i]);
         rows.push(row(
             format!("rms_fixed_{f}"),
             format!("RMS pos. error, fixed R = {f} × truth"),
@@ -186,7 +109,7 @@ fn rows(p: &Params, clip: Option<f64>, st: &Stats<'_>) -> Result<Vec<Row>, Scena
             ),
         ));
     }
-    let smooth = st.rms_tail(&|r| &r.smooth_se);
+    let smooth = Sums::rms(st.tail_smooth);
     rows.push(row(
         "smooth_rms_ratio".into(),
         "RMS pos. error, smoothed / filtered IMM (true R)".into(),
@@ -200,11 +123,7 @@ fn rows(p: &Params, clip: Option<f64>, st: &Stats<'_>) -> Result<Vec<Row>, Scena
         ),
     ));
     for (i, f) in STARTS.iter().enumerate() {
-        let (m, sd) = mean_sd_last(
-            runs.iter()
-                .filter_map(|r| r.multi_ratio[i].last().copied())
-                .collect(),
-        );
+        let (m, sd) = mean_sd_last(&st.last_multi[i]);
         rows.push(row(
             format!("ratio_multi_{f}"),
             format!("multi-IMM final R ratio from {f}"),
@@ -219,7 +138,7 @@ fn rows(p: &Params, clip: Option<f64>, st: &Stats<'_>) -> Result<Vec<Row>, Scena
         ));
     }
     for (i, f) in STARTS.iter().enumerate() {
-        let dynr = st.rms_tail(&|r| &r.multi_se[i]);
+        let dynr = Sums::rms(st.tail_multi[i]);
         rows.push(row(
             format!("rms_multi_{f}"),
             format!("RMS pos. error, multi-IMM from {f}"),
@@ -231,17 +150,9 @@ fn rows(p: &Params, clip: Option<f64>, st: &Stats<'_>) -> Result<Vec<Row>, Scena
         ));
     }
     for (i, f) in STARTS.iter().enumerate() {
-        let (mr, sdr) = mean_sd_last(
-            runs.iter()
-                .filter_map(|r| r.vb_ratio[i].last().map(|v| v[0]))
-                .collect(),
-        );
-        let (ma, sda) = mean_sd_last(
-            runs.iter()
-                .filter_map(|r| r.vb_ratio[i].last().map(|v| v[1]))
-                .collect(),
-        );
-        let dynr = st.rms_tail(&|r| &r.vb_se[i]);
+        let (mr, sdr) = mean_sd_last(&st.last_vb[i][0]);
+        let (ma, sda) = mean_sd_last(&st.last_vb[i][1]);
+        let dynr = Sums::rms(st.tail_vb[i]);
         rows.push(row(
             format!("ratio_vb_range_{f}"),
             format!("variational: final σr² ratio from {f}"),
@@ -271,14 +182,9 @@ fn rows(p: &Params, clip: Option<f64>, st: &Stats<'_>) -> Result<Vec<Row>, Scena
         ));
     }
     for (i, f) in STARTS.iter().enumerate() {
-        let last = |c: usize| -> Vec<f64> {
-            runs.iter()
-                .filter_map(|r| r.ev_ratio[i].last().map(|v| v[c]))
-                .collect()
-        };
-        let (mr, sdr) = mean_sd_last(last(0));
-        let (ma, sda) = mean_sd_last(last(1));
-        let dynr = st.rms_tail(&|r| &r.ev_se[i]);
+        let (mr, sdr) = mean_sd_last(&st.last_ev[i][0]);
+        let (ma, sda) = mean_sd_last(&st.last_ev[i][1]);
+        let dynr = Sums::rms(st.tail_ev[i]);
         for (axis, sym, m, sd) in [("range", "σr²", mr, sdr), ("azimuth", "σθ²", ma, sda)] {
             rows.push(row(
                 format!("ratio_ev_{axis}_{f}"),
@@ -301,14 +207,9 @@ fn rows(p: &Params, clip: Option<f64>, st: &Stats<'_>) -> Result<Vec<Row>, Scena
         ));
     }
     for (i, f) in STARTS.iter().enumerate() {
-        let last = |c: usize| -> Vec<f64> {
-            runs.iter()
-                .filter_map(|r| r.df_ratio[i].last().map(|v| v[c]))
-                .collect()
-        };
-        let (mr, sdr) = mean_sd_last(last(0));
-        let (ma, sda) = mean_sd_last(last(1));
-        let dynr = st.rms_tail(&|r| &r.df_se[i]);
+        let (mr, sdr) = mean_sd_last(&st.last_df[i][0]);
+        let (ma, sda) = mean_sd_last(&st.last_df[i][1]);
+        let dynr = Sums::rms(st.tail_df[i]);
         for (axis, sym, m, sd) in [("range", "σr²", mr, sdr), ("azimuth", "σθ²", ma, sda)] {
             rows.push(row(
                 format!("ratio_df_{axis}_{f}"),
@@ -401,8 +302,8 @@ fn series(times: &[f64], m: &Means) -> Series {
 
 /// Figs. 3–7.
 #[allow(clippy::too_many_lines)]
-fn figures(st: &Stats<'_>, m: &Means) -> Vec<Figure> {
-    let (times, runs) = (st.times, st.runs);
+fn figures(st: &Sums, m: &Means) -> Vec<Figure> {
+    let times = &st.times;
     let (mean_mu, ratios, vb_a, ev_r, ev_a, df_r, df_a, fixed_rms) = (
         &m.mu,
         &m.ratios,
@@ -415,8 +316,8 @@ fn figures(st: &Stats<'_>, m: &Means) -> Vec<Figure> {
     );
     let pts =
         |ys: &[f64]| -> Vec<(f64, f64)> { times.iter().zip(ys).map(|(t, y)| (*t, *y)).collect() };
-    let track = runs.first().map(|r| r.track.clone()).unwrap_or_default();
-    let nr = runs.len();
+    let track = st.track.clone();
+    let nr = st.count;
     vec![
         Figure {
             name: "fig3_trajectory".into(),
@@ -551,7 +452,7 @@ fn figures(st: &Stats<'_>, m: &Means) -> Vec<Figure> {
                     points: STARTS
                         .iter()
                         .enumerate()
-                        .map(|(i, f)| (*f, st.rms_tail(&|r| &r.fixed_se[i])))
+                        .map(|(i, f)| (*f, Sums::rms(st.tail_fixed[i])))
                         .collect(),
                     style: LineStyle::Solid,
                 },
@@ -560,7 +461,7 @@ fn figures(st: &Stats<'_>, m: &Means) -> Vec<Figure> {
                     points: STARTS
                         .iter()
                         .enumerate()
-                        .map(|(i, f)| (*f, st.rms_tail(&|r| &r.multi_se[i])))
+                        .map(|(i, f)| (*f, Sums::rms(st.tail_multi[i])))
                         .collect(),
                     style: LineStyle::Solid,
                 },
@@ -569,7 +470,7 @@ fn figures(st: &Stats<'_>, m: &Means) -> Vec<Figure> {
                     points: STARTS
                         .iter()
                         .enumerate()
-                        .map(|(i, f)| (*f, st.rms_tail(&|r| &r.vb_se[i])))
+                        .map(|(i, f)| (*f, Sums::rms(st.tail_vb[i])))
                         .collect(),
                     style: LineStyle::Solid,
                 },
@@ -578,7 +479,7 @@ fn figures(st: &Stats<'_>, m: &Means) -> Vec<Figure> {
                     points: STARTS
                         .iter()
                         .enumerate()
-                        .map(|(i, f)| (*f, st.rms_tail(&|r| &r.ev_se[i])))
+                        .map(|(i, f)| (*f, Sums::rms(st.tail_ev[i])))
                         .collect(),
                     style: LineStyle::Solid,
                 },
@@ -587,7 +488,7 @@ fn figures(st: &Stats<'_>, m: &Means) -> Vec<Figure> {
                     points: STARTS
                         .iter()
                         .enumerate()
-                        .map(|(i, f)| (*f, st.rms_tail(&|r| &r.df_se[i])))
+                        .map(|(i, f)| (*f, Sums::rms(st.tail_df[i])))
                         .collect(),
                     style: LineStyle::Solid,
                 },

@@ -205,8 +205,9 @@ pub fn simulate(
     })
 }
 
-/// The plain KF's and the adaptive filter's position errors, and the detections.
-#[derive(Debug, Clone, PartialEq)]
+/// The plain KF's and the adaptive filter's position errors, and the detections (part
+/// of the scenario's per-run record).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Outcome1d {
     /// Plain KF position error per plot, m.
     pub kf_err: Vec<f64>,

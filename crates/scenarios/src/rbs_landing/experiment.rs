@@ -255,8 +255,9 @@ impl RbsLandingConfig {
     }
 }
 
-/// What one Monte Carlo run records per plot (index `k` is time `(k+1)·dt`).
-#[derive(Debug, Clone, PartialEq)]
+/// What one Monte Carlo run records per plot (index `k` is time `(k+1)·dt`); the
+/// scenario's per-run record (one per case) of a split campaign.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RunSeries {
     /// Position error (estimate − truth) per filter, per step, per axis.
     pub pos_err: [Vec<[f64; 3]>; FILTERS],

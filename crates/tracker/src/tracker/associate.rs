@@ -9,11 +9,15 @@ use crate::estimator::{Estimator, TrackGate};
 use crate::jpda::marginals;
 
 impl Tracker {
-    /// How track `k`, predicted at `pred`, gates: per mode for an IMM track, with the
-    /// EKF's polar prediction when it has one.
+    /// How track `k`, predicted at `pred`, gates: per mode for an IMM or aircraft-IMM
+    /// track, with the EKF's polar prediction when it has one.
     fn track_gate<'a>(&'a self, k: usize, pred: &'a Gaussian<4>) -> TrackGate<'a> {
         if let (Estimator::Imm(imm), Some(Some(ip))) = (&self.est, self.imm_predicted.get(k)) {
             return TrackGate::Imm(imm, ip);
+        }
+        let polar_sensor = self.sensors[self.scan_sensor].polar.as_ref();
+        if let Some(g) = self.est.aircraft_gate(&self.tracks[k].state, polar_sensor) {
+            return TrackGate::Aircraft(g);
         }
         let polar = self
             .polar_mp

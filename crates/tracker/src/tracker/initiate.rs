@@ -10,16 +10,25 @@ use crate::{Track, TrackId, TrackStatus};
 impl Tracker {
     /// Two-point initiation: pairs earlier unused plots (initiators) with this scan's
     /// unused plots through the velocity gate, by GNN on the normalised distance.
-    pub(super) fn initiate(&mut self, time: f64, report: &mut ScanReport) {
+    ///
+    /// In a synchronous scan (`sector = None`) every plot is at `time`. In a sector
+    /// (`Some(min_dt)`) plot `j` is at `self.point_times[j]`, `time` is the sector's
+    /// start, and a pair needs `min_dt ≤ Δt ≤ max_initiation_interval` (half a
+    /// revolution at least: the two plots come from different revolutions).
+    pub(super) fn initiate(&mut self, time: f64, sector: Option<f64>, report: &mut ScanReport) {
         let cfg = &self.config;
         let points = &self.points;
+        let times = sector.map(|_| self.point_times.as_slice());
+        let min_dt = sector.unwrap_or(0.0);
+        let t_of = |j: usize| times.map_or(time, |t| t[j]);
+        let t_last = times.map_or(time, |t| t.iter().copied().fold(time, f64::max));
         self.initiators
             .retain(|i| time - i.time <= cfg.max_initiation_interval);
         self.edges.clear();
         let plot_trace = r_max_trace(points);
         for (row, init) in self.initiators.iter().enumerate() {
-            let dt = time - init.time;
-            if dt <= 0.0 {
+            let dt = t_last - init.time;
+            if dt <= 0.0 || dt < min_dt {
                 continue;
             }
             let r = cfg.max_speed * dt
@@ -27,6 +36,10 @@ impl Tracker {
             let (used, edges) = (&self.used, &mut self.edges);
             self.grid.query(&init.position, [r, r], |j| {
                 if used[j] {
+                    return;
+                }
+                let dt = t_of(j) - init.time;
+                if times.is_some() && (dt < min_dt || dt > cfg.max_initiation_interval) {
                     return;
                 }
                 let z2 = &points[j];
@@ -50,6 +63,7 @@ impl Tracker {
             let Some(j) = col else { continue };
             let init = self.initiators[row];
             let z2 = &points[j];
+            let time = t_of(j);
             let dt = time - init.time;
             let score = self.config.score.map_or(0.0, |sc| {
                 let lim = self.config.max_speed * dt
@@ -87,6 +101,8 @@ impl Tracker {
                 score,
                 peak_score: score,
                 state,
+                looks: Vec::new(),
+                revision: 0,
             };
             matched[row] = true;
             self.used[j] = true;
@@ -111,7 +127,7 @@ impl Tracker {
         for (j, p) in points.iter().enumerate() {
             if !self.used[j] {
                 self.initiators.push(Initiator {
-                    time,
+                    time: t_of(j),
                     position: p.position,
                     covariance: p.covariance,
                 });

@@ -1,0 +1,117 @@
+//! The single-target aircraft IMM (`kind = "aircraft-imm"`): `argus_imm::AircraftImm`
+//! with two CV modes and the coordinated turn with its rate, EKFs updated with the
+//! (range, azimuth) plots of one 2-D radar, started by its own two-point start
+//! (`AircraftTuning::start`: the unbiased conversion of the first two plots, then
+//! differencing, the CT mode with its turn-rate prior). One row per plot from the second:
+//! the combined state, its variances, the three mode probabilities and the CT mode's turn
+//! rate.
+
+use argus_core_math::Vector;
+use argus_imm::{AircraftEstimate, AircraftRadar, AircraftTuning};
+use argus_sensors::{Measurement, RadarNoise};
+
+use super::rows::{Column, Point, TrackRows};
+use super::spec::Sensor;
+use super::start::{Ctx, too_few};
+use crate::error::CliError;
+use crate::plotfile::FilePlot;
+
+/// The aircraft IMM of `tuning` over the polar plots of one sensor. Plots of the same
+/// instant are applied in turn without mixing or prediction.
+///
+/// # Errors
+/// [`CliError::Input`] at the plot file's line of a plot of another sensor or a Cartesian
+/// report, at the second plot when the start fails, at a plot whose step fails; at the
+/// sensor's `sigma_range` for σ the radar model refuses (zero).
+pub(super) fn run(
+    ctx: &Ctx<'_>,
+    tuning: &AircraftTuning<2, 3>,
+    plots: &[FilePlot],
+) -> Result<TrackRows, CliError> {
+    let imm = tuning.build()?;
+    let (Some(p1), Some(p2)) = (plots.first(), plots.get(1)) else {
+        return Err(too_few(ctx));
+    };
+    let sensor = ctx.sensor(p1)?;
+    let radar = radar(ctx, sensor)?;
+    let plot = |p: &FilePlot| -> Result<Vector<2>, CliError> {
+        let not_polar = |what: String| {
+            CliError::input(
+                ctx.plots_path,
+                Some(p.line),
+                Some("sensor"),
+                format!("the aircraft IMM tracks one 2-D radar's polar plots: {what}"),
+            )
+        };
+        if p.sensor() != sensor.id {
+            return Err(not_polar(format!(
+                "plot of sensor {} after sensor {}",
+                p.sensor(),
+                sensor.id
+            )));
+        }
+        match p.measurement() {
+            Measurement::Polar(m) => Ok(m.to_vector()),
+            _ => Err(not_polar("not a (range, azimuth) plot".to_owned())),
+        }
+    };
+    let mut est = tuning
+        .start(&radar, &plot(p1)?, &plot(p2)?, p2.time() - p1.time())
+        .map_err(|e| {
+            CliError::input(
+                ctx.plots_path,
+                Some(p2.line),
+                Some("t"),
+                format!("two-point initialisation: {e}"),
+            )
+        })?;
+    let mut columns = Column::single(2, 3, false);
+    columns.extend(Column::TURN_RATE);
+    let mut rows = TrackRows::with_reference(columns, ctx.reference);
+    let mut t = p2.time();
+    push(&mut rows, t, &est).map_err(ctx.imm_error(p2))?;
+    for p in plots.get(2..).unwrap_or(&[]) {
+        let z = plot(p)?;
+        let dt = p.time() - t;
+        let upd = if dt == 0.0 {
+            imm.update(&est.into_prediction(), &radar, &z)
+        } else {
+            imm.step(&est, dt, &radar, &z)
+        };
+        est = upd.map_err(ctx.imm_error(p))?.estimate;
+        t = p.time();
+        push(&mut rows, t, &est).map_err(ctx.imm_error(p))?;
+    }
+    Ok(rows)
+}
+
+/// The sensor as the aircraft IMM's radar.
+fn radar(ctx: &Ctx<'_>, s: &Sensor) -> Result<AircraftRadar, CliError> {
+    let (sr, sa) = ctx.polar_sigmas(s)?;
+    let bad = |e: String| {
+        CliError::input(
+            ctx.config,
+            None,
+            Some("sigma_range"),
+            format!("sensor {}: {e}", s.id),
+        )
+    };
+    let noise = RadarNoise::constant(sr, sa, 0.0).map_err(|e| bad(e.to_string()))?;
+    AircraftRadar::new([s.position[0], s.position[1]], noise).map_err(|e| bad(e.to_string()))
+}
+
+/// One row: the combined estimate, the mode probabilities, the turn rate.
+fn push(
+    rows: &mut TrackRows,
+    t: f64,
+    est: &AircraftEstimate<2, 3>,
+) -> Result<(), argus_imm::ImmError> {
+    let c = est.combined()?;
+    let mu = est.mode_probabilities();
+    rows.push(
+        &Point::new(t, &c)
+            .modes(Some(&mu))
+            .turn_rate(Some(est.turn_rate())),
+    );
+    Ok(())
+}
