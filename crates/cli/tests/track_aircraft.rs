@@ -403,7 +403,7 @@ fn tracker_equals_single_target(sensor: &str) {
     let (x, sx) = (col(&head, "x"), col(&sh, "x"));
     let (t, st) = (col(&head, "t"), col(&sh, "t"));
     for (r, s) in rows.iter().zip(&srows[skipped..]) {
-        assert_eq!(r[t], s[st]);
+        assert_eq!(r[t].to_bits(), s[st].to_bits(), "row times");
         for k in 0..4 {
             let (a, b) = (r[x + k], s[sx + k]);
             assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{a} vs {b}");

@@ -2,6 +2,9 @@
 //! plots at their own times from the simulated rotating radar, every configuration
 //! scored against the ADS-B truth.
 
+// Test helpers outside #[test] functions may unwrap: a failure is a test failure.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use argus_scenarios::{NoProgress, Params, find};
 
 fn row(out: &argus_scenarios::RunOutput, key: &str) -> f64 {
@@ -19,7 +22,7 @@ fn every_configuration_tracks_the_first_quarter_hour() {
     let params = Params::from_settings(&sc.params(), &["duration=900".to_owned()]).unwrap();
     let out = argus_scenarios::run(sc.as_ref(), 0..1, 1, params.clone(), &NoProgress).unwrap();
     // The extract's README: 123 aircraft in the hour.
-    assert_eq!(row(&out, "aircraft"), 123.0);
+    assert!((row(&out, "aircraft") - 123.0).abs() < 0.5);
     for c in [
         "gnn_kf",
         "gnn_imm",

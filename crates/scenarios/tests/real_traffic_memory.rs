@@ -8,6 +8,9 @@
 //!
 //! This file holds one test so that its process measures nothing else.
 
+// Test helpers outside #[test] functions may unwrap: a failure is a test failure.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
 use argus_scenarios::{Params, find};
 use argus_sensors::{Measurement, Plot};
 use argus_tracker::Tracker;

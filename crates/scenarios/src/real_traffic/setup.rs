@@ -60,7 +60,7 @@ pub(super) fn params() -> Vec<ParamSpec> {
             1.0,
             0.0,
             1.0,
-            "1: the beam turns clockwise (north → east), 0: counter-clockwise",
+            "1: the beam turns clockwise (north → east), 0: counter-clockwise (a switch: ≥ 0.5 is 1)",
         ),
         ParamSpec::new(
             "north_time",
@@ -299,18 +299,12 @@ impl Setup {
                 format!("must be below max_range={max_range}"),
             ));
         }
-        let clockwise = p.get("clockwise")?;
-        if clockwise != 0.0 && clockwise != 1.0 {
-            return Err(conflict(
-                "clockwise",
-                clockwise,
-                "must be 0 or 1".to_owned(),
-            ));
-        }
+        // A switch: values of 0.5 and above turn clockwise.
+        let clockwise = p.get("clockwise")? >= 0.5;
         let radar = Radar {
             sensor: argus_sensors::SensorId(RADAR),
             period: p.get("period")?,
-            rotation: if clockwise == 1.0 {
+            rotation: if clockwise {
                 Rotation::Clockwise
             } else {
                 Rotation::Counterclockwise
@@ -515,7 +509,7 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
     base.max_misses = p.get("max_misses")? as u32;
     base.max_initiation_interval = p.get("init_revolutions")? * radar.period;
     base.max_speed = p.get("max_speed")?;
-    if p.get("score")? == 1.0 {
+    if p.get("score")? >= 0.5 {
         base.score = Some(argus_tracker::ScoreConfig {
             p_detection: radar.p_detection,
             clutter_density: radar.clutter_density().max(1e-12),
