@@ -22,6 +22,7 @@ mod summary;
 mod track;
 
 pub use crate::error::{CliError, Location};
+pub use crate::merge_error::MergeError;
 pub use crate::track::{Smoothing, TrackStream, run as track_files};
 
 use std::io::IsTerminal;
