@@ -1,7 +1,10 @@
 //! Project automation for Argus.
 //!
 //! - `cargo xtask test`: `cargo fmt --all --check`, `cargo clippy --workspace --all-targets -- -D warnings`,
-//!   `cargo test --workspace` — the README's test command and what CI runs.
+//!   `cargo test --workspace`, then the Python package's tests: a venv in
+//!   `<target>/py-venv` with `python/requirements-test.txt`, `pip install ./python` (the
+//!   wheel built with the dev profile, reusing the test build), `pytest python/tests` —
+//!   the README's test command and what CI runs.
 //! - `cargo xtask bench [--quick] [FILTER]`: runs the criterion benches and writes `docs/BENCHMARKS.md`
 //!   (bench, median, machine) from criterion's `estimates.json` files.
 //! - `cargo xtask cluster-test [--runs N] [--keep]`: a 4-shard `argus run gimpo` campaign and
@@ -75,7 +78,83 @@ fn test() -> Result<(), String> {
         "-D",
         "warnings",
     ])?;
-    cargo(&["test", "--workspace"])
+    cargo(&["test", "--workspace"])?;
+    python_tests()
+}
+
+/// The target directory of this run (`CARGO_TARGET_DIR` or `<workspace>/target`).
+fn target_dir() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map_or_else(|| workspace_root().join("target"), PathBuf::from)
+}
+
+fn run(program: &Path, args: &[&str], envs: &[(&str, &std::ffi::OsStr)]) -> Result<(), String> {
+    eprintln!("xtask: {} {}", program.display(), args.join(" "));
+    let status = Command::new(program)
+        .args(args)
+        .envs(envs.iter().copied())
+        .current_dir(workspace_root())
+        .status()
+        .map_err(|e| format!("cannot run {}: {e}", program.display()))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!(
+            "`{} {}` failed ({status})",
+            program.display(),
+            args.join(" ")
+        ))
+    }
+}
+
+/// The Python phase: the `argus` binary for the comparisons, a venv made from the
+/// project's files, the package installed from `python/`, and pytest.
+fn python_tests() -> Result<(), String> {
+    cargo(&["build", "-p", "argus-cli"])?;
+    let target = target_dir();
+    let venv = target.join("py-venv");
+    let python = venv.join("bin").join("python");
+    if !python.exists() {
+        let system =
+            std::env::var_os("PYTHON").map_or_else(|| PathBuf::from("python3"), PathBuf::from);
+        let venv_arg = venv.to_string_lossy().into_owned();
+        run(&system, &["-m", "venv", &venv_arg], &[])?;
+    }
+    run(
+        &python,
+        &[
+            "-m",
+            "pip",
+            "install",
+            "-q",
+            "-r",
+            "python/requirements-test.txt",
+        ],
+        &[],
+    )?;
+    // The dev profile (optimised, see the workspace's Cargo.toml) shares the artifacts of
+    // `cargo test`; users' `pip install ./python` builds in release.
+    let dev = std::ffi::OsStr::new("--profile dev");
+    run(
+        &python,
+        &[
+            "-m",
+            "pip",
+            "install",
+            "-q",
+            "--no-build-isolation",
+            "--no-deps",
+            "--force-reinstall",
+            "./python",
+        ],
+        &[("MATURIN_PEP517_ARGS", dev)],
+    )?;
+    let bin = target.join("debug").join("argus");
+    run(
+        &python,
+        &["-m", "pytest", "-q", "python/tests"],
+        &[("ARGUS_BIN", bin.as_os_str())],
+    )
 }
 
 fn bench(filter: Option<&str>, quick: bool) -> Result<(), String> {
@@ -95,13 +174,23 @@ fn bench(filter: Option<&str>, quick: bool) -> Result<(), String> {
     let mut rows = Vec::new();
     collect_estimates(&criterion_dir, &criterion_dir, &mut rows);
     rows.sort_by(|a, b| a.0.cmp(&b.0));
-    let table = render(&rows, &machine());
+    let mut table = render(&rows, &machine());
     let out = root.join("docs").join("BENCHMARKS.md");
+    // The Python section is written by hand from python/bench/bench.py: keep it.
+    if let Ok(old) = std::fs::read_to_string(&out)
+        && let Some(at) = old.find(PYTHON_SECTION)
+    {
+        table.push('\n');
+        table.push_str(&old[at..]);
+    }
     std::fs::create_dir_all(root.join("docs")).map_err(|e| e.to_string())?;
     std::fs::write(&out, table).map_err(|e| format!("cannot write {}: {e}", out.display()))?;
     eprintln!("xtask: wrote {} ({} benches)", out.display(), rows.len());
     Ok(())
 }
+
+/// The heading of docs/BENCHMARKS.md's Python section, which `cargo xtask bench` keeps.
+const PYTHON_SECTION: &str = "## Python";
 
 /// Walks `target/criterion/**/new/estimates.json` and reads the median point estimate (ns).
 fn collect_estimates(base: &Path, dir: &Path, rows: &mut Vec<(String, f64)>) {

@@ -6,13 +6,13 @@ use argus_scenarios::{ParamProblem, ScenarioError};
 
 /// Where a bad value sits in an input file.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub(crate) struct Location {
+pub struct Location {
     /// The file.
-    pub(crate) file: PathBuf,
+    pub file: PathBuf,
     /// 1-based line number, when known.
-    pub(crate) line: Option<u64>,
+    pub line: Option<u64>,
     /// The field (CSV column or TOML key), when known.
-    pub(crate) field: Option<String>,
+    pub field: Option<String>,
 }
 
 impl std::fmt::Display for Location {
@@ -32,7 +32,7 @@ impl std::fmt::Display for Location {
 /// with code 2.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
-pub(crate) enum CliError {
+pub enum CliError {
     /// A value in an input file is bad.
     #[error("{at}: {message}")]
     Input {

@@ -12,7 +12,7 @@ fn range(r: &Range<u64>) -> String {
 /// A campaign that is not whole.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
-pub(crate) enum MergeError {
+pub enum MergeError {
     /// Shard `index` of a planned campaign (`--shards count --shard index`) is in no
     /// directory given.
     #[error(

@@ -147,12 +147,30 @@ impl FilePlot {
 /// # Errors
 /// [`CliError::Input`] naming the file, line and field; [`CliError::Io`].
 pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .flexible(false)
-        .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| csv_error(path, e))?;
+    let rdr = reader().from_path(path).map_err(|e| csv_error(path, e))?;
+    read_from(rdr, path)
+}
+
+/// [`read`] on plot file text held in memory; `path` names it in errors.
+///
+/// # Errors
+/// As [`read`].
+pub(crate) fn read_text(text: &str, path: &Path) -> Result<Vec<FilePlot>, CliError> {
+    read_from(reader().from_reader(text.as_bytes()), path)
+}
+
+/// The CSV reader settings of plot files.
+fn reader() -> csv::ReaderBuilder {
+    let mut b = csv::ReaderBuilder::new();
+    b.has_headers(true).flexible(false).trim(csv::Trim::All);
+    b
+}
+
+/// The plots of `rdr` (a plot file called `path` in errors).
+fn read_from<R: std::io::Read>(
+    mut rdr: csv::Reader<R>,
+    path: &Path,
+) -> Result<Vec<FilePlot>, CliError> {
     let headers = rdr.headers().map_err(|e| csv_error(path, e))?.clone();
     let cols: Vec<String> = headers.iter().map(str::to_owned).collect();
     for c in &cols {

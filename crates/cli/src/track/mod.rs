@@ -22,13 +22,15 @@ mod single_imm;
 mod smooth;
 mod spec;
 mod start;
+mod stream;
 #[cfg(test)]
 mod tests;
 mod tracker_config;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
-pub(crate) use smooth::Smoothing;
+pub use smooth::Smoothing;
+pub use stream::TrackStream;
 
 use crate::error::CliError;
 use crate::output::write_atomic;
@@ -36,17 +38,18 @@ use crate::plotfile;
 
 /// Runs `argus track`: the configuration at `config` over the plot file `plots_path`,
 /// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`),
-/// with the smoothed columns when `smoothing` is given. Returns the number of rows written.
+/// with the smoothed columns when `smoothing` is given. Returns the number of rows written
+/// and the summary's path (multi-target only).
 ///
 /// # Errors
 /// [`CliError::Input`] for bad configuration or plots, filter errors, I/O;
 /// [`CliError::Smooth`] for a track that cannot be smoothed.
-pub(crate) fn run(
+pub fn run(
     config: &Path,
     plots_path: &Path,
     out: &Path,
     smoothing: Option<Smoothing>,
-) -> Result<usize, CliError> {
+) -> Result<(usize, Option<PathBuf>), CliError> {
     let loaded = job::load_all(config)?;
     let reference = loaded.reference.as_ref();
     let plots = plotfile::read(plots_path)?;
@@ -62,7 +65,7 @@ pub(crate) fn run(
             let rows = single::run(&ctx, &estimator, &plots)?;
             let n = rows.rows();
             write_atomic(out, rows.into_text().as_bytes())?;
-            Ok(n)
+            Ok((n, None))
         }
         job::Job::Multi(m) => {
             let files = multi::Files {
@@ -72,7 +75,8 @@ pub(crate) fn run(
                 reference,
                 smoothing,
             };
-            multi::run(&m, &files, &plots)
+            let (n, summary) = multi::run(&m, &files, &plots)?;
+            Ok((n, Some(summary)))
         }
     }
 }

@@ -37,7 +37,7 @@ pub(super) struct Files<'a> {
 /// The tracks CSV's columns for a configuration: the IMMs add the mode probabilities,
 /// the multi-IMM its noise estimate, the aircraft IMM its turn rate (before the score),
 /// track-score management the score.
-fn columns(c: &TrackerConfig) -> Vec<Column> {
+pub(super) fn columns(c: &TrackerConfig) -> Vec<Column> {
     let (modes, noise) = match c.estimator {
         EstimatorConfig::Kf | EstimatorConfig::Ekf => (0, false),
         EstimatorConfig::ImmCv2 { .. } => (2, false),
@@ -54,7 +54,12 @@ fn columns(c: &TrackerConfig) -> Vec<Column> {
 
 /// One row: the track's state at its time, as produced by the scan of `sensor`; with
 /// smoothing, kept until the end of the run ([`Recorded`]).
-fn row(out: &mut TrackRows, rec: Option<&mut Recorded>, sensor: SensorId, track: &Track) {
+pub(super) fn row(
+    out: &mut TrackRows,
+    rec: Option<&mut Recorded>,
+    sensor: SensorId,
+    track: &Track,
+) {
     if let Some(rec) = rec {
         rec.push(sensor, track);
         return;
@@ -73,7 +78,7 @@ fn row(out: &mut TrackRows, rec: Option<&mut Recorded>, sensor: SensorId, track:
 /// The tracker's plot of a file plot: polar plots go in as they are (the tracker converts
 /// them with its sensor's noise, or the EKF and multi-IMM use them directly), Cartesian
 /// reports with their covariance.
-fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliError> {
+pub(super) fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliError> {
     match p.measurement() {
         Measurement::Cartesian2(_) | Measurement::Polar(_) => Ok(p.plot),
         Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(CliError::input(
@@ -87,7 +92,12 @@ fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliError> {
 
 /// A [`TrackerError`] about plot `index` of the scan starting at file plot `start`, at
 /// that plot's line.
-fn plot_error(files: &Files<'_>, plots: &[FilePlot], start: usize, e: TrackerError) -> CliError {
+pub(super) fn plot_error(
+    files: &Files<'_>,
+    plots: &[FilePlot],
+    start: usize,
+    e: TrackerError,
+) -> CliError {
     let (index, field) = match &e {
         TrackerError::TimeOrder { index, .. } => (*index, Some("t")),
         TrackerError::UnknownSensor { index, .. } => (*index, Some("sensor")),
@@ -268,7 +278,7 @@ fn summary_path(out: &Path) -> PathBuf {
 /// Runs the tracker over `plots` (already read and checked by `plotfile`): every plot is
 /// converted before the first scan, so a bad plot stops the run before any track exists
 /// and nothing is written. Writes the tracks CSV and the summary atomically; returns the
-/// number of rows.
+/// number of rows and the summary's path.
 ///
 /// # Errors
 /// [`CliError::Input`] naming the plot file's line for a plot the tracker rejects;
@@ -277,7 +287,7 @@ pub(super) fn run(
     m: &MultiTarget,
     files: &Files<'_>,
     plots: &[FilePlot],
-) -> Result<usize, CliError> {
+) -> Result<(usize, PathBuf), CliError> {
     let converted = plots
         .iter()
         .map(|p| tracker_plot(files, p))
@@ -361,6 +371,5 @@ pub(super) fn run(
     let json = serde_json::to_string_pretty(&summary)
         .map_err(|e| CliError::io(&path, std::io::Error::other(e.to_string())))?;
     write_atomic(&path, json.as_bytes())?;
-    println!("wrote {}", path.display());
-    Ok(rows)
+    Ok((rows, path))
 }

@@ -34,7 +34,7 @@ use crate::error::CliError;
 
 /// How `argus track` smooths (the command-line flags).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum Smoothing {
+pub enum Smoothing {
     /// `--smooth`: fixed-interval, over the whole track.
     Interval,
     /// `--smooth-lag N` ([`Lag::Steps`], `N ≥ 1`) or `--smooth-lag-seconds S`

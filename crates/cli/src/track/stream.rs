@@ -1,0 +1,102 @@
+//! The multi-target job as a stream, for the Python bindings' `Tracker`: the same
+//! configuration, the same tracker and the same rows as [`super::multi`], scan by scan
+//! as the caller hands plots in instead of over one file.
+
+use std::path::{Path, PathBuf};
+
+use argus_tracker::{Track, Tracker};
+
+use super::geo::Reference;
+use super::job::{self, Job};
+use super::multi::{self, Files};
+use super::rows::TrackRows;
+use super::tracker_config::MultiTarget;
+use crate::error::CliError;
+use crate::plotfile::{self, FilePlot};
+
+/// The multi-target tracker of an `argus track` configuration (one with a `[tracker]`
+/// table), fed plot file text a batch at a time.
+#[derive(Debug, Clone)]
+pub struct TrackStream {
+    job: MultiTarget,
+    tracker: Tracker,
+    config: PathBuf,
+    reference: Option<Reference>,
+}
+
+impl TrackStream {
+    /// The tracker of the configuration at `config`.
+    ///
+    /// # Errors
+    /// As `argus track` for the configuration; [`CliError::Input`] when it has no
+    /// `[tracker]` table (a single-target configuration).
+    pub fn new(config: &Path) -> Result<Self, CliError> {
+        let loaded = job::load_all(config)?;
+        match loaded.job {
+            Job::Multi(m) => Ok(Self {
+                tracker: Tracker::new(m.config.clone())?,
+                job: m,
+                config: config.to_path_buf(),
+                reference: loaded.reference,
+            }),
+            Job::Single { .. } => Err(CliError::input(
+                config,
+                None,
+                Some("tracker"),
+                "the multi-target tracker needs a [tracker] table (this configuration is a single-target job)",
+            )),
+        }
+    }
+
+    /// Processes `text`, plot file text (header and rows), called `name` in errors: its
+    /// plots grouped into scans by `(time, sensor)` in order, as `argus track` does.
+    /// Returns the tracks CSV text (header and one row per track per scan). On an error
+    /// the tracker is left as it was before the call.
+    ///
+    /// # Errors
+    /// As `argus track` for the plots.
+    pub fn process(&mut self, text: &str, name: &Path) -> Result<String, CliError> {
+        let plots = plotfile::read_text(text, name)?;
+        let before = self.tracker.clone();
+        let result = self.scans(&plots, name);
+        if result.is_err() {
+            self.tracker = before;
+        }
+        result
+    }
+
+    fn scans(&mut self, plots: &[FilePlot], name: &Path) -> Result<String, CliError> {
+        let files = Files {
+            config: &self.config,
+            plots: name,
+            out: name,
+            reference: self.reference.as_ref(),
+            smoothing: None,
+        };
+        let converted = plots
+            .iter()
+            .map(|p| multi::tracker_plot(&files, p))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut out =
+            TrackRows::with_reference(multi::columns(&self.job.config), self.reference.as_ref());
+        let mut start = 0;
+        while start < converted.len() {
+            let (t, s) = (converted[start].time(), converted[start].sensor());
+            let len = converted[start..]
+                .iter()
+                .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
+                .count();
+            self.tracker
+                .process_scan(t, s, &converted[start..start + len])
+                .map_err(|e| multi::plot_error(&files, plots, start, e))?;
+            let deleted = self.tracker.take_deleted();
+            let mut all: Vec<&Track> = self.tracker.tracks().iter().chain(&deleted).collect();
+            all.sort_by_key(|tr| tr.id());
+            for tr in all {
+                multi::row(&mut out, None, s, tr);
+            }
+            start += len;
+        }
+        Ok(out.into_text())
+    }
+}

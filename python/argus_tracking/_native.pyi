@@ -1,0 +1,184 @@
+"""Type stubs of the native module (the Rust side of argus_tracking)."""
+
+from os import PathLike
+from typing import Any, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from ._results import FilterRun, ImmRun
+
+ArrayLike = npt.ArrayLike
+_Path = Union[str, PathLike]
+
+class Filter:
+    """Base of the filter classes: stateless predict / update / step / run."""
+
+    @property
+    def dim_x(self) -> int: ...
+    @property
+    def dim_z(self) -> int: ...
+    @property
+    def model(self) -> str: ...
+    def predict(self, x: ArrayLike, P: ArrayLike, dt: float) -> Tuple[np.ndarray, np.ndarray]:
+        """``(x, P)`` predicted over ``dt`` seconds."""
+    def update(self, x: ArrayLike, P: ArrayLike, z: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
+        """``(x, P)`` updated with the plot ``z``."""
+    def step(
+        self, x: ArrayLike, P: ArrayLike, dt: float, z: ArrayLike
+    ) -> Tuple[np.ndarray, np.ndarray]:
+        """``predict`` over ``dt`` (none when 0) then ``update`` with ``z``."""
+    def run(
+        self,
+        times: ArrayLike,
+        plots: ArrayLike,
+        x0: ArrayLike,
+        P0: ArrayLike,
+        t0: Optional[float] = None,
+    ) -> FilterRun:
+        """Filters ``plots`` (``n × 2``) at ``times`` from ``(x0, P0)`` at ``t0``."""
+    def smooth(
+        self,
+        times: ArrayLike,
+        plots: ArrayLike,
+        x0: ArrayLike,
+        P0: ArrayLike,
+        t0: float,
+    ) -> FilterRun:
+        """Fixed-interval RTS (unscented RTS for the UKF) smoothing of the same run."""
+
+class KalmanFilter(Filter):
+    """Linear KF on ``"cv"`` (q = σ_a, m/s²), ``"ca"`` (q = σ_j, m/s³) or ``"ct"`` (q = σ_v,
+    turn rate ``omega`` rad/s) with a Cartesian position sensor of covariance ``R``."""
+
+    def __init__(
+        self,
+        model: str = "cv",
+        q: float = 1.0,
+        R: Optional[ArrayLike] = None,
+        *,
+        omega: float = 0.0,
+        joseph: bool = True,
+    ) -> None: ...
+
+class ExtendedKalmanFilter(Filter):
+    """EKF with a polar radar (``sigma_range`` m, ``sigma_azimuth`` rad, at
+    ``sensor_position``) or a Cartesian sensor (``sensor="cartesian"``, ``R``)."""
+
+    def __init__(
+        self,
+        model: str = "cv",
+        q: float = 1.0,
+        *,
+        sensor: str = "polar",
+        sigma_range: Optional[float] = None,
+        sigma_azimuth: Optional[float] = None,
+        sensor_position: Tuple[float, float] = (0.0, 0.0),
+        R: Optional[ArrayLike] = None,
+        omega: float = 0.0,
+        joseph: bool = True,
+    ) -> None: ...
+
+class UnscentedKalmanFilter(Filter):
+    """UKF (scaled unscented transform ``alpha``, ``beta``, ``kappa``), sensors as the EKF."""
+
+    def __init__(
+        self,
+        model: str = "cv",
+        q: float = 1.0,
+        *,
+        sensor: str = "polar",
+        sigma_range: Optional[float] = None,
+        sigma_azimuth: Optional[float] = None,
+        sensor_position: Tuple[float, float] = (0.0, 0.0),
+        R: Optional[ArrayLike] = None,
+        omega: float = 0.0,
+        alpha: float = 1.0,
+        beta: float = 2.0,
+        kappa: float = 0.0,
+    ) -> None: ...
+
+_Model = Union[Tuple[str, float], Tuple[str, float, float]]
+
+class ImmBase:
+    """Base of the IMM classes: batch ``run``."""
+
+    @property
+    def modes(self) -> int: ...
+    def run(
+        self,
+        times: ArrayLike,
+        plots: ArrayLike,
+        x0: ArrayLike,
+        P0: ArrayLike,
+        mu0: Optional[ArrayLike] = None,
+        t0: Optional[float] = None,
+    ) -> ImmRun: ...
+
+class Imm(ImmBase):
+    """IMM of KFs on ``("cv", q)`` / ``("ct", q, omega)`` models with Markov matrix
+    ``transition``; Cartesian plots (``R``) or polar plots (σ, unbiased conversion)."""
+
+    def __init__(
+        self,
+        models: Sequence[_Model],
+        transition: ArrayLike,
+        *,
+        R: Optional[ArrayLike] = None,
+        sigma_range: Optional[float] = None,
+        sigma_azimuth: Optional[float] = None,
+        sensor_position: Tuple[float, float] = (0.0, 0.0),
+    ) -> None: ...
+
+class MultiImm(ImmBase):
+    """Seed 000's multi-IMM noise estimator over one polar radar's plots."""
+
+    def __init__(
+        self,
+        models: Sequence[_Model],
+        transition: ArrayLike,
+        *,
+        sigma_range: float,
+        sigma_azimuth: float,
+        sensor_position: Tuple[float, float] = (0.0, 0.0),
+        n: int = 5,
+        p: float = 0.1,
+        clip: Optional[float] = None,
+    ) -> None: ...
+
+class DifferenceImm(ImmBase):
+    """One IMM under range/azimuth variances from third differences of the raw plots."""
+
+    def __init__(
+        self,
+        models: Sequence[_Model],
+        transition: ArrayLike,
+        *,
+        sigma_range: float,
+        sigma_azimuth: float,
+        sensor_position: Tuple[float, float] = (0.0, 0.0),
+        forgetting: float = 1.0,
+        prior_count: float = 2.0,
+    ) -> None: ...
+
+class TrackerStream:
+    def __init__(self, config: _Path) -> None: ...
+    def process(self, text: str, name: str) -> str: ...
+
+def track_files(
+    config: _Path,
+    plots: _Path,
+    out: _Path,
+    smooth: bool = False,
+    smooth_lag: Optional[int] = None,
+    smooth_lag_seconds: Optional[float] = None,
+) -> Tuple[int, Optional[str]]: ...
+def toml_from_json(json: str) -> str: ...
+def list_scenarios_json() -> str: ...
+def run_scenario_json(
+    name: str, start: int, end: Optional[int], seed: int, settings: Sequence[str]
+) -> str: ...
+def nees(x: ArrayLike, P: ArrayLike, truth: ArrayLike) -> np.ndarray: ...
+def chi2_interval(dim: int, runs: int = 1, confidence: float = 0.95) -> Tuple[float, float]: ...
+def ospa(truth: ArrayLike, estimates: ArrayLike, cutoff: float, order: float = 1.0) -> dict: ...
+def gospa(truth: ArrayLike, estimates: ArrayLike, cutoff: float, order: float = 2.0) -> dict: ...

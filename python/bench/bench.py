@@ -1,0 +1,192 @@
+"""Speed of argus_tracking against FilterPy and against the `argus` command, in one run.
+
+    python python/bench/bench.py [--argus target/release/argus] [--quick]
+
+(a) one KF step called from Python (predict() + update(), and the one-call step())
+    against FilterPy's KalmanFilter.predict() + update();
+(b) a batch run over 10⁵ steps against a FilterPy loop over the same plots;
+(c) one gimpo run (seed 3, run 0, from `argus simulate gimpo`) tracked by Argus's
+    3-mode IMM (CV, CT ±3°/s) against FilterPy's IMMEstimator with the same models;
+(d) the 100-run gimpo campaign from Python (run_scenario) against `argus run gimpo`.
+Prints a Markdown table of the times and ratios. Build both sides in release first:
+`pip install ./python` and `cargo build --release -p argus-cli`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import platform
+import subprocess
+import tempfile
+import time
+
+import numpy as np
+from filterpy.common import Q_discrete_white_noise
+from filterpy.kalman import IMMEstimator
+from filterpy.kalman import KalmanFilter as FKalmanFilter
+
+import argus_tracking as at
+
+H = np.array([[1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]])
+R = np.diag([2500.0, 2500.0])
+
+
+def best(fn, repeat: int = 5) -> float:
+    """The best of `repeat` timings of fn() (s)."""
+    out = np.inf
+    for _ in range(repeat):
+        t = time.perf_counter()
+        fn()
+        out = min(out, time.perf_counter() - t)
+    return out
+
+
+def cv_f(dt):
+    f = np.eye(4)
+    f[0, 1] = f[2, 3] = dt
+    return f
+
+
+def ct_f(omega, dt):
+    s, c = np.sin(omega * dt), np.cos(omega * dt)
+    return np.array([[1, s / omega, 0, -(1 - c) / omega], [0, c, 0, -s],
+                     [0, (1 - c) / omega, 1, s / omega], [0, s, 0, c]])
+
+
+def fkf(f, q, x0, p0):
+    k = FKalmanFilter(dim_x=4, dim_z=2)
+    k.x, k.P, k.F, k.Q, k.H, k.R = x0.copy(), p0.copy(), f, q, H, R.copy()
+    return k
+
+
+def bench_step(n: int) -> "tuple[float, float, float]":
+    x0 = np.array([1000.0, 10.0, 2000.0, -5.0])
+    p0 = np.diag([100.0, 10.0, 100.0, 10.0])
+    z = np.array([1010.0, 1995.0])
+    kf = at.KalmanFilter("cv", q=1.0, R=R)
+    ref = fkf(cv_f(1.0), Q_discrete_white_noise(2, 1.0, 1.0, block_size=2), x0, p0)
+
+    def ours():
+        for _ in range(n):
+            x, p = kf.predict(x0, p0, 1.0)
+            kf.update(x, p, z)
+
+    def ours_step():
+        for _ in range(n):
+            kf.step(x0, p0, 1.0, z)
+
+    def theirs():
+        for _ in range(n):
+            ref.x, ref.P = x0, p0  # the same work per call as ours: from the same start
+            ref.predict()
+            ref.update(z)
+
+    return best(ours) / n, best(ours_step) / n, best(theirs, 3) / n
+
+
+def bench_batch(n: int) -> "tuple[float, float]":
+    rng = np.random.default_rng(0)
+    t = np.arange(1, n + 1, dtype=float)
+    z = np.stack([1000 + 10 * t, 2000 - 5 * t], axis=1) + rng.normal(scale=50, size=(n, 2))
+    x0 = np.array([1000.0, 10.0, 2000.0, -5.0])
+    p0 = np.diag([100.0, 10.0, 100.0, 10.0])
+    kf = at.KalmanFilter("cv", q=1.0, R=R)
+    ours = best(lambda: kf.run(t, z, x0, p0, t0=0.0))
+
+    def theirs():
+        ref = fkf(cv_f(1.0), Q_discrete_white_noise(2, 1.0, 1.0, block_size=2), x0, p0)
+        xs = np.empty((n, 4))
+        for k in range(n):
+            ref.predict()
+            ref.update(z[k])
+            xs[k] = ref.x
+
+    return ours, best(theirs, 1)
+
+
+def gimpo_plots(argus: str, folder: str) -> "tuple[np.ndarray, np.ndarray]":
+    path = os.path.join(folder, "gimpo.csv")
+    subprocess.run([argus, "simulate", "gimpo", "--seed", "3", "--out", path], check=True,
+                   capture_output=True)
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    t = np.array([float(r["t"]) for r in rows])
+    z = np.array([[float(r["range"]), float(r["azimuth"])] for r in rows])
+    return t, z
+
+
+def bench_imm(t: np.ndarray, z: np.ndarray) -> "tuple[float, float]":
+    omega = np.deg2rad(3.0)
+    m = np.array([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]])
+    sr, sa = 70.0, np.deg2rad(0.08)
+    imm = at.Imm([("cv", 0.5), ("ct", 0.5, omega), ("ct", 0.5, -omega)], m,
+                 sigma_range=sr, sigma_azimuth=sa)
+    x0 = np.array([z[0, 0] * np.cos(z[0, 1]), 0.0, z[0, 0] * np.sin(z[0, 1]), 0.0])
+    p0 = np.diag([1e4, 1e4, 1e4, 1e4])
+    ours = best(lambda: imm.run(t, z, x0, p0, t0=t[0] - 1.0))
+    # FilterPy: the same three models; its filters take Cartesian plots, converted
+    # beforehand (outside the timing) with a constant R.
+    xy = np.stack([z[:, 0] * np.cos(z[:, 1]), z[:, 0] * np.sin(z[:, 1])], axis=1)
+    dts = np.diff(np.concatenate([[t[0] - 1.0], t]))
+    fs = {dt: (cv_f(dt), ct_f(omega, dt), ct_f(-omega, dt),
+               Q_discrete_white_noise(2, dt, 0.25, block_size=2, order_by_dim=True))
+          for dt in np.unique(dts)}
+
+    def theirs():
+        filters = [fkf(cv_f(1.0), np.eye(4), x0, p0) for _ in range(3)]
+        ref = IMMEstimator(filters, np.array([0.8, 0.1, 0.1]), m)
+        for k in range(len(t)):
+            f_cv, f_l, f_r, q = fs[dts[k]]
+            for f, fm in zip(filters, (f_cv, f_l, f_r)):
+                f.F, f.Q = fm, q
+            ref.predict()
+            ref.update(xy[k])
+
+    return ours, best(theirs, 1)
+
+
+def bench_campaign(argus: str, folder: str) -> "tuple[float, float]":
+    def ours():
+        at.run_scenario("gimpo", runs=100, seed=3)
+
+    def cli():
+        subprocess.run([argus, "run", "gimpo", "--runs", "100", "--seed", "3", "--out",
+                        os.path.join(folder, "gimpo")], check=True, capture_output=True)
+
+    return best(ours, 2), best(cli, 2)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--argus", default=os.path.join(
+        os.environ.get("CARGO_TARGET_DIR", "target"), "release", "argus"))
+    ap.add_argument("--quick", action="store_true", help="fewer repetitions")
+    a = ap.parse_args()
+    n_step = 2_000 if a.quick else 20_000
+    with tempfile.TemporaryDirectory() as folder:
+        s_ours, s_step, s_theirs = bench_step(n_step)
+        b_ours, b_theirs = bench_batch(100_000)
+        t, z = gimpo_plots(a.argus, folder)
+        i_ours, i_theirs = bench_imm(t, z)
+        c_ours, c_cli = bench_campaign(a.argus, folder)
+    load = os.getloadavg()
+    print(f"Machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
+          f"load average {load[0]:.1f} at the end; Python {platform.python_version()}\n")
+    print("| comparison | argus_tracking | other | ratio | goal |")
+    print("|---|---|---|---|---|")
+    print(f"| (a) one KF step: predict() + update() vs FilterPy | {s_ours * 1e6:.2f} µs | "
+          f"{s_theirs * 1e6:.2f} µs | {s_theirs / s_ours:.1f}× | ≥ 20× |")
+    print(f"| (a) one KF step: step() vs FilterPy predict() + update() | {s_step * 1e6:.2f} µs | "
+          f"{s_theirs * 1e6:.2f} µs | {s_theirs / s_step:.1f}× | ≥ 20× |")
+    print(f"| (b) batch run, 10⁵ steps, vs FilterPy loop | {b_ours * 1e3:.1f} ms | "
+          f"{b_theirs * 1e3:.0f} ms | {b_theirs / b_ours:.0f}× | ≥ 1000× |")
+    print(f"| (c) one gimpo run ({len(t)} plots), 3-mode IMM vs FilterPy IMMEstimator | "
+          f"{i_ours * 1e3:.2f} ms | {i_theirs * 1e3:.0f} ms | {i_theirs / i_ours:.0f}× | ≥ 1000× |")
+    print(f"| (d) 100-run gimpo campaign: run_scenario vs `argus run` | {c_ours:.2f} s | "
+          f"{c_cli:.2f} s | {c_ours / c_cli:.2f} (Python / CLI) | ≤ 1.2 |")
+
+
+if __name__ == "__main__":
+    main()
