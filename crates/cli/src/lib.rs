@@ -6,6 +6,16 @@
 //! Errors are printed once (`error: <file>:<line>: field '<f>': <what>`) and the process
 //! exits with code 2; nothing a user feeds in panics.
 
+/// `println!` for the command's messages. A closed standard output (`argus run … | head`)
+/// is not a failure of the run — its files are still written, atomically — so a write
+/// error there is ignored instead of panicking as `println!` does.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
 mod campaign_plan;
 mod campaign_scan;
 mod error;
@@ -219,9 +229,11 @@ fn execute(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Command::Scenarios => {
             for s in argus_scenarios::list() {
-                println!(
+                say!(
                     "{:<16} {} (default {} runs)",
-                    s.name, s.description, s.default_runs
+                    s.name,
+                    s.description,
+                    s.default_runs
                 );
             }
         }
@@ -283,15 +295,15 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     s.index, s.count, s.campaign[0], s.campaign[1]
                 )
             });
-            println!(
+            say!(
                 "argus run {} --seed {seed} --runs {}..{}{of}",
                 sc.name(),
                 runs.start,
                 runs.end
             );
-            print!("{}", table_text(&report));
+            say!("{}", table_text(&report).trim_end_matches('\n'));
             for f in files {
-                println!("wrote {f}");
+                say!("wrote {f}");
             }
         }
         Command::Merge {
@@ -338,7 +350,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             };
             let mut files = summary::write(&report, &out, &info)?;
             files.extend(extra.iter().cloned());
-            println!(
+            say!(
                 "argus merge {} --seed {} --runs {}..{} ({} files)",
                 sc.name(),
                 m.seed,
@@ -346,9 +358,9 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 m.runs.end,
                 m.files.len()
             );
-            print!("{}", table_text(&report));
+            say!("{}", table_text(&report).trim_end_matches('\n'));
             for f in files {
-                println!("wrote {f}");
+                say!("wrote {f}");
             }
         }
         Command::Simulate {
@@ -379,7 +391,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     ));
                 }
                 output::write_atomic(&truth_path, t_text.as_bytes())?;
-                println!(
+                say!(
                     "wrote {} ({} plots) and {}",
                     out.display(),
                     sim.plots.len(),
@@ -418,7 +430,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 }
             }
             output::write_atomic(&truth_path, t_text.as_bytes())?;
-            println!(
+            say!(
                 "wrote {} ({} plots) and {}",
                 out.display(),
                 plots.len(),
@@ -463,7 +475,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 image: &image,
             };
             for line in campaign_plan::write(&plan, &out)? {
-                println!("{line}");
+                say!("{line}");
             }
         }
         Command::Track {
@@ -485,9 +497,9 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             };
             let (n, summary) = track::run(&config, &plots, &out, smoothing)?;
             if let Some(path) = summary {
-                println!("wrote {}", path.display());
+                say!("wrote {}", path.display());
             }
-            println!("wrote {} ({n} track points)", out.display());
+            say!("wrote {} ({n} track points)", out.display());
         }
         Command::Score {
             tracks,
@@ -497,9 +509,9 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             cutoff,
         } => {
             for line in score::run(&tracks, &truth, &out, step, cutoff)? {
-                println!("{line}");
+                say!("{line}");
             }
-            println!("wrote {}", out.display());
+            say!("wrote {}", out.display());
         }
     }
     Ok(())

@@ -634,3 +634,32 @@ fn track_3d_noisy_spherical_plots_are_consistent() {
         );
     }
 }
+
+/// A reader that stops reading (`argus run … | head -1`) closes the pipe: the command
+/// must neither panic nor lose its files (it used to panic in `println!`).
+#[test]
+fn a_closed_stdout_is_no_panic_and_the_files_are_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_argus"))
+        .args([
+            "run",
+            "cv-polar",
+            "--runs",
+            "4",
+            "--set",
+            "duration=20",
+            "--out",
+        ])
+        .arg(&out)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let done = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&done.stderr);
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(done.status.code(), Some(0), "{err}");
+    assert!(out.join("summary.json").is_file());
+}
