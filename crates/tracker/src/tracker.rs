@@ -422,30 +422,16 @@ impl Tracker {
                 &self.points,
                 polar_sensor.as_ref(),
             );
-            let Some((posterior, log_likelihood)) = posterior else {
-                track.delete(DeletionReason::FilterFailure);
-                report.deleted.push(track.id);
-                continue;
-            };
-            if hit.is_some() {
-                report.assigned += 1;
-            }
-            track.estimate = posterior;
-            track.revision = track.revision.wrapping_add(1);
-            track.time = time;
-            add_score(
+            conclude(
                 &self.config,
                 self.gate.p_gate(),
                 track,
+                &mut report,
+                posterior,
+                hit.is_some(),
                 self.jpda_dl[k],
-                log_likelihood,
+                time,
             );
-            if let Some(event) = track.count(hit.is_some(), &self.config) {
-                match event {
-                    TrackStatus::Confirmed => report.confirmed.push(track.id),
-                    _ => report.deleted.push(track.id),
-                }
-            }
         }
 
         // 5. Initiate from unused plots.
@@ -478,4 +464,41 @@ fn add_score(
         };
         track.peak_score = track.peak_score.max(track.score);
     }
+}
+
+/// Concludes one track's step in a scan or a sector: a failed filter step (`outcome`
+/// `None`) deletes the track; otherwise its posterior becomes the estimate at `time`, the
+/// track score takes the opportunity's increment ([`add_score`]) and the hit or miss is
+/// counted for confirmation and deletion, each event recorded in `report`. Returns
+/// whether the step succeeded.
+#[allow(clippy::too_many_arguments)]
+fn conclude(
+    config: &TrackerConfig,
+    p_gate: f64,
+    track: &mut Track,
+    report: &mut ScanReport,
+    outcome: Option<(Gaussian<4>, Option<f64>)>,
+    hit: bool,
+    dl: Option<f64>,
+    time: f64,
+) -> bool {
+    let Some((posterior, log_likelihood)) = outcome else {
+        track.delete(DeletionReason::FilterFailure);
+        report.deleted.push(track.id);
+        return false;
+    };
+    if hit {
+        report.assigned += 1;
+    }
+    track.estimate = posterior;
+    track.revision = track.revision.wrapping_add(1);
+    track.time = time;
+    add_score(config, p_gate, track, dl, log_likelihood);
+    if let Some(event) = track.count(hit, config) {
+        match event {
+            TrackStatus::Confirmed => report.confirmed.push(track.id),
+            _ => report.deleted.push(track.id),
+        }
+    }
+    true
 }

@@ -421,31 +421,19 @@ impl Tracker {
                     (post, look)
                 }
             };
-            let Some((posterior, log_likelihood)) = posterior else {
-                track.delete(DeletionReason::FilterFailure);
-                report.deleted.push(track.id);
-                continue;
-            };
-            if hit.is_some() {
-                report.assigned += 1;
-            }
-            track.estimate = posterior;
-            track.revision = track.revision.wrapping_add(1);
-            track.time = track.time.max(at);
-            super::add_score(
+            let time = track.time.max(at);
+            if super::conclude(
                 &self.config,
                 self.gate.p_gate(),
                 track,
+                &mut report,
+                posterior,
+                hit.is_some(),
                 self.jpda_dl[k],
-                log_likelihood,
-            );
-            visit(track, s, track.time);
-            report.visited.push(track.id);
-            if let Some(event) = track.count(hit.is_some(), &self.config) {
-                match event {
-                    TrackStatus::Confirmed => report.confirmed.push(track.id),
-                    _ => report.deleted.push(track.id),
-                }
+                time,
+            ) {
+                visit(track, s, time);
+                report.visited.push(track.id);
             }
         }
 
