@@ -37,7 +37,7 @@ pub use crate::track::{Smoothing, TrackStream, run as track_files};
 
 use std::io::IsTerminal;
 use std::ops::Range;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
@@ -376,13 +376,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let truth_path = truth.unwrap_or_else(|| out.with_extension("truth.csv"));
             if let Some(sim) = sc.simulated(&params, seed, run) {
                 let sim = sim?;
-                let (text, skipped) = plotfile::write_text(&sim.plots);
-                if skipped > 0 {
-                    return Err(CliError::Usage(format!(
-                        "{skipped} plots of another layout cannot share one file"
-                    )));
-                }
-                output::write_atomic(&out, text.as_bytes())?;
+                write_plot_file(&out, &sim.plots)?;
                 let mut t_text = String::from("t,target,x,vx,y,vy\n");
                 for r in &sim.truth {
                     t_text.push_str(&format!(
@@ -402,13 +396,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let (scene, sensors) = sc.scene(&params)?;
             let plots =
                 argus_sim::generate_plots(&scene, &sensors, &mut argus_sim::run_rng(seed, run))?;
-            let (text, skipped) = plotfile::write_text(&plots);
-            if skipped > 0 {
-                return Err(CliError::Usage(format!(
-                    "{skipped} plots of another layout cannot share one file"
-                )));
-            }
-            output::write_atomic(&out, text.as_bytes())?;
+            write_plot_file(&out, &plots)?;
             // Truth at every plot time of each target, in the papers' 2-D order.
             let mut t_text = String::from("t,target,x,vx,y,vy,z,vz\n");
             let mut times: Vec<f64> = plots.iter().map(|p| p.plot.time()).collect();
@@ -528,4 +516,19 @@ pub fn run_command_line() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// Writes `plots` as one plot file at `out` (atomically).
+///
+/// # Errors
+/// [`CliError::Usage`] when plots of different layouts would share the file;
+/// [`CliError::Io`].
+fn write_plot_file(out: &Path, plots: &[argus_sim::LabelledPlot]) -> Result<(), CliError> {
+    let (text, skipped) = plotfile::write_text(plots);
+    if skipped > 0 {
+        return Err(CliError::Usage(format!(
+            "{skipped} plots of another layout cannot share one file"
+        )));
+    }
+    output::write_atomic(out, text.as_bytes())
 }
