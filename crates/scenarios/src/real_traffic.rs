@@ -21,6 +21,7 @@
 //! azimuth); then per revolution the clutter count and per clutter plot its radius and
 //! azimuth. The truth is the same in every run.
 
+mod params;
 mod radar;
 mod report;
 mod setup;
@@ -71,7 +72,7 @@ impl Scenario for RealTraffic {
     }
 
     fn params(&self) -> Vec<ParamSpec> {
-        setup::params()
+        params::params()
     }
 
     fn scene(&self, _params: &Params) -> Result<(Truth, Vec<SensorSpec>), ScenarioError> {

@@ -1,0 +1,198 @@
+//! `real-traffic`'s parameters: the radar, the tracker configurations' tuning and the
+//! scoring, each settable with `--set`.
+
+use crate::params::ParamSpec;
+
+/// Paris CDG's aerodrome reference point (AIP France, AD 2 LFPG: 49°00′35″ N,
+/// 002°32′52″ E, 392 ft).
+const CDG: (f64, f64, f64) = (49.009_722, 2.547_778, 119.0);
+
+/// The parameters with their defaults and ranges.
+pub(super) fn params() -> Vec<ParamSpec> {
+    vec![
+        ParamSpec::new(
+            "duration",
+            3600.0,
+            10.0,
+            3600.0,
+            "tracked time from the hour's start (s)",
+        ),
+        ParamSpec::new(
+            "radar_lat",
+            CDG.0,
+            -89.0,
+            89.0,
+            "radar latitude (deg, WGS-84)",
+        ),
+        ParamSpec::new("radar_lon", CDG.1, -180.0, 180.0, "radar longitude (deg)"),
+        ParamSpec::new(
+            "radar_alt",
+            CDG.2,
+            -500.0,
+            9000.0,
+            "radar height above the ellipsoid (m)",
+        ),
+        ParamSpec::new("period", 5.0, 0.5, 60.0, "revolution period (s)"),
+        ParamSpec::new(
+            "clockwise",
+            1.0,
+            0.0,
+            1.0,
+            "1: the beam turns clockwise (north → east), 0: counter-clockwise (a switch: ≥ 0.5 is 1)",
+        ),
+        ParamSpec::new(
+            "north_time",
+            0.0,
+            -1e6,
+            1e6,
+            "a time at which the beam points north (s)",
+        ),
+        ParamSpec::new("sigma_r", 70.0, 1e-3, 1e4, "range noise σ (m)"),
+        ParamSpec::new("sigma_az_deg", 0.08, 1e-6, 10.0, "azimuth noise σ (deg)"),
+        ParamSpec::new("p_d", 0.9, 0.05, 1.0, "detection probability"),
+        ParamSpec::new(
+            "clutter",
+            10.0,
+            0.0,
+            1e5,
+            "mean false plots per revolution, uniform per m² over the coverage",
+        ),
+        ParamSpec::new("min_range", 500.0, 0.0, 1e5, "radar minimum range (m)"),
+        ParamSpec::new("max_range", 150_000.0, 1e3, 1e6, "radar maximum range (m)"),
+        ParamSpec::new(
+            "sector_fraction",
+            0.125,
+            1e-3,
+            1.0,
+            "tracker sector: this fraction of a revolution",
+        ),
+        ParamSpec::new(
+            "kf_sigma_a",
+            5.0,
+            0.0,
+            100.0,
+            "KF tracks' white-acceleration σ (m/s²)",
+        ),
+        ParamSpec::new(
+            "imm_sigma_low",
+            0.5,
+            0.0,
+            100.0,
+            "IMM quiet mode's white-acceleration σ (m/s²)",
+        ),
+        ParamSpec::new(
+            "imm_sigma_high",
+            10.0,
+            0.0,
+            100.0,
+            "IMM manoeuvre mode's white-acceleration σ (m/s²)",
+        ),
+        ParamSpec::new(
+            "imm_p_stay",
+            0.95,
+            1e-3,
+            0.999,
+            "IMM probability of staying in a mode per revolution",
+        ),
+        ParamSpec::new("confirm_m", 3.0, 1.0, 20.0, "confirmation: M hits ..."),
+        ParamSpec::new(
+            "confirm_n",
+            4.0,
+            2.0,
+            20.0,
+            "... in the first N opportunities",
+        ),
+        ParamSpec::new(
+            "max_misses",
+            4.0,
+            1.0,
+            100.0,
+            "a confirmed track is deleted after this many consecutive misses",
+        ),
+        ParamSpec::new(
+            "max_speed",
+            350.0,
+            1.0,
+            2000.0,
+            "two-point initiation: the fastest aircraft (m/s)",
+        ),
+        ParamSpec::new(
+            "init_revolutions",
+            1.4,
+            1.01,
+            10.0,
+            "two-point initiation: an unused plot waits this many revolutions for its pair",
+        ),
+        ParamSpec::new(
+            "ac_cv_sigma_low",
+            0.3,
+            0.0,
+            100.0,
+            "aircraft IMM: quiet CV mode's σ_a (m/s²)",
+        ),
+        ParamSpec::new(
+            "ac_cv_sigma_high",
+            2.0,
+            0.0,
+            100.0,
+            "aircraft IMM: manoeuvre CV mode's σ_a (m/s²)",
+        ),
+        ParamSpec::new(
+            "ac_ct_sigma_a",
+            0.5,
+            0.0,
+            100.0,
+            "aircraft IMM: CT mode's σ_a (m/s²)",
+        ),
+        ParamSpec::new(
+            "ac_ct_sigma_omega_deg",
+            0.2,
+            1e-6,
+            10.0,
+            "aircraft IMM: CT mode's turn-rate random walk σ_ω (deg/s²)",
+        ),
+        ParamSpec::new(
+            "score",
+            0.0,
+            0.0,
+            1.0,
+            "1: confirm and delete by track score (SPRT, with the clutter density), 0: M of N",
+        ),
+        ParamSpec::new(
+            "false_confirm",
+            1e-4,
+            1e-12,
+            0.4,
+            "track score: probability of confirming a false track",
+        ),
+        ParamSpec::new(
+            "delete_drop",
+            9.0,
+            0.1,
+            100.0,
+            "track score: a confirmed track is deleted this far below its peak score",
+        ),
+        ParamSpec::new(
+            "new_target_density",
+            1e-11,
+            1e-20,
+            1e-3,
+            "track score: new targets per m² per revolution",
+        ),
+        ParamSpec::new(
+            "jpda_max_events",
+            1000.0,
+            1.0,
+            1e7,
+            "JPDA: largest cluster enumerated exactly (joint events)",
+        ),
+        ParamSpec::new("score_step", 5.0, 0.1, 60.0, "scoring grid step (s)"),
+        ParamSpec::new(
+            "cutoff",
+            1000.0,
+            1.0,
+            1e6,
+            "track-to-truth assignment and GOSPA cut-off (m)",
+        ),
+    ]
+}
