@@ -378,3 +378,42 @@ fn a_bad_plot_late_in_the_file_leaves_no_tracks_file_behind() {
     );
     assert!(good_lines > 1000, "{good_lines} plots before the bad one");
 }
+
+#[test]
+fn the_stream_tracks_a_rotating_radar_as_argus_track_does() {
+    // `TrackStream` (the Python `Tracker`'s engine) fed the plot file in two halves gives
+    // the rows `argus track` gives for the whole file, in order, except those of the
+    // sectors still open when the plots end (`argus track` flushes them; a stream keeps
+    // them open for plots still to come).
+    let dir = tempfile::tempdir().unwrap();
+    let (file, _) = plots(5, &aircraft());
+    let run = track(dir.path(), &example(), &file);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    let config = dir.path().join("rot.toml");
+    let mut stream = argus_cli::TrackStream::new(&config).unwrap();
+    let mut lines: Vec<&str> = file.lines().collect();
+    let header = lines.remove(0);
+    let half = lines.len() / 2;
+    let mut streamed = Vec::new();
+    for part in [&lines[..half], &lines[half..]] {
+        let text = format!("{header}\n{}\n", part.join("\n"));
+        let out = stream.process(&text, Path::new("part.csv")).unwrap();
+        streamed.extend(out.lines().skip(1).map(str::to_owned));
+    }
+    let whole: Vec<&str> = run.csv.lines().skip(1).collect();
+    assert!(
+        streamed.len() > 400,
+        "{} rows streamed of {}",
+        streamed.len(),
+        whole.len()
+    );
+    // The open sectors at the end hold at most a revolution of rows (four aircraft, and
+    // clutter tentatives).
+    assert!(
+        whole.len() - streamed.len() < 50,
+        "{} against {}",
+        streamed.len(),
+        whole.len()
+    );
+    assert_eq!(streamed, whole[..streamed.len()], "the streamed rows");
+}
