@@ -36,7 +36,10 @@ fn adaptive(cfg: &Maneuver1dConfig, compensation: Compensation) -> Result<Adapti
 }
 
 fn meas(cfg: &Maneuver1dConfig) -> Result<CartesianPosition<2, 1>, AdaptiveError> {
-    Ok(CartesianPosition::<2, 1>::new([0], Matrix::<1, 1>::new(cfg.r))?)
+    Ok(CartesianPosition::<2, 1>::new(
+        [0],
+        Matrix::<1, 1>::new(cfg.r),
+    )?)
 }
 
 /// One switch of one run: the state the adaptive filter has just before it and the
