@@ -421,7 +421,7 @@ fn with_threshold_keeps_the_window_and_only_changes_the_decision() {
         if k == 10 {
             let c: Glrt<2, 1, 1> = glrt.clone().with_threshold(f64::MAX).unwrap();
             assert_eq!(c.len(), glrt.len());
-            assert_eq!(c.config().threshold(), f64::MAX);
+            assert!(c.config().threshold() >= f64::MAX);
             copy = Some(c);
         }
         let out = glrt.step(&lin).unwrap();
