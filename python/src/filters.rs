@@ -16,7 +16,10 @@ use crate::errors::{Kind, input, invalid, raise, rust_name};
 use crate::filter_build::{FilterKind, SensorArgs, make, model_dimension, sensor_spec};
 use crate::filter_core::{DynFilter, Estimate, RunFail, RunSlices, SmoothFail, filter_error};
 
-/// The base of the three filter classes: `predict`, `update`, `step` and `run`.
+/// The base of the three filter classes. Stateful like FilterPy (the object owns `x` and
+/// `P`: `predict(dt)`, `update(z)`, the `x` / `P` / `nis` properties, `set_state`) and
+/// functional (`predict(x, P, dt)`, `update(x, P, z)`, `step`, `run`, `smooth`: the own
+/// state is not touched).
 #[pyclass(subclass, frozen, module = "argus_tracking._native")]
 pub(crate) struct Filter {
     inner: Box<dyn DynFilter>,
