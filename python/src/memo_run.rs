@@ -16,8 +16,9 @@
 //!
 //! A converged recursion in float64 reaches a fixed point or a short cycle (measured: the
 //! 2-D CV, CA and CT KFs within ~100 steps, cycles of 1 to 3 steps; the 3-D CV a 6-step
-//! cycle; the 3-D CA none within 6 000 steps, so it gains nothing). After [`GIVE_UP`]
-//! consecutive misses the run finishes with the full step alone.
+//! cycle; the 3-D CA none within 6 000 steps, so it gains nothing). After
+//! [`GIVE_UP_NEW_DT`] consecutive steps with intervals not seen before, or [`GIVE_UP`]
+//! consecutive misses, the run finishes with the full step alone.
 
 use argus_core_math::{Gaussian, Matrix, Vector, kernels};
 use argus_filters::{FilterError, GaussianFilter, MeasurementPrediction};
@@ -29,10 +30,16 @@ use crate::filter_core::{RunFail, RunSlices};
 /// a short cycle of round-off; interleaved intervals need one key each.
 const SLOTS: usize = 8;
 
-/// Consecutive misses after which the run stops looking up and storing keys and finishes
-/// with the full step alone: with intervals that never repeat exactly (a radar's jittered
-/// times) the table only costs (+40 % on 10⁵ jittered CV steps before this rule).
-const GIVE_UP: usize = 64;
+/// Consecutive steps whose interval matches no stored key after which the run stops
+/// looking up and storing keys and finishes with the full step alone: with intervals that
+/// never repeat exactly (a radar's jittered times) the table only costs (+40 % on 10⁵
+/// jittered CV steps before this rule). Misses with a known interval (the transient before
+/// the recursion settles, ~100 steps) do not count here.
+const GIVE_UP_NEW_DT: usize = 64;
+
+/// Consecutive misses of any kind after which the run gives up the table likewise (a
+/// recursion that does not settle into a short cycle, as the 3-D CA's).
+const GIVE_UP: usize = 4096;
 
 /// What a step computes from its key `(dt, P_prior)` alone.
 struct Entry<const N: usize, const M: usize> {
@@ -113,6 +120,7 @@ where
     let mut table: Vec<Entry<N, M>> = Vec::with_capacity(SLOTS);
     let mut next_slot = 0;
     let mut misses = 0;
+    let mut new_dts = 0;
     let mut cur = Cov::Own(start);
     let mut rows = out
         .x
@@ -146,6 +154,7 @@ where
                 }
                 cur = Cov::Entry(j, mean);
                 misses = 0;
+                new_dts = 0;
                 k += 1;
                 continue;
             }
@@ -166,8 +175,13 @@ where
         p_out.copy_from_slice(post_rows.as_slice());
         *nis_out = nis;
         misses += 1;
+        if table.iter().any(|e| e.dt == dt.to_bits()) {
+            new_dts = 0;
+        } else {
+            new_dts += 1;
+        }
         k += 1;
-        if misses >= GIVE_UP {
+        if misses >= GIVE_UP || new_dts >= GIVE_UP_NEW_DT {
             // The rest with the full step alone (the plain run's loop).
             for (i, (((x_out, p_out), nis_out), (&dt, z))) in rows.enumerate() {
                 let (_, nis) = full_step(
