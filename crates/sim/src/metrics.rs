@@ -439,6 +439,36 @@ mod tests {
     }
 
     #[test]
+    fn sums_hold_the_same_numbers_whatever_the_runs() {
+        // A lost first run sizes the sums; the times come from the first kept run (1.5,
+        // 2.5), and the metrics equal those of the same runs in another order of the lost
+        // one (lost runs are left out of every sum).
+        let lost = RunRecord {
+            steps: vec![step(0.0, 1e9, 1e9, 1e9), step(1.0, 1e9, 1e9, 1e9)],
+            lost: true,
+        };
+        let kept = |p: f64| RunRecord {
+            steps: vec![step(1.5, p, 1.0, 2.0), step(2.5, p, 1.0, 4.0)],
+            lost: false,
+        };
+        let mut sums = MetricsSums::new(4, 2, 0.5);
+        sums.add(&lost);
+        let after_one = sums.retained();
+        for p in [1.0, 2.0, 3.0] {
+            sums.add(&kept(p));
+        }
+        // Tolerance: none — the sums are sized by the first run's two steps.
+        assert_eq!(sums.retained(), after_one);
+        let m = sums.finish().unwrap();
+        assert_eq!(m.steps[0].time.to_bits(), 1.5f64.to_bits());
+        assert_eq!(m.lost, 1);
+        let other = Metrics::from_runs(&[kept(1.0), kept(2.0), lost, kept(3.0)], 4, 2, 0.5);
+        let other = other.unwrap();
+        assert_eq!(format!("{:?}", m.steps), format!("{:?}", other.steps));
+        assert_eq!(m.avg_rmse_pos.to_bits(), other.avg_rmse_pos.to_bits());
+    }
+
+    #[test]
     fn rejects_ragged_and_empty() {
         let a = RunRecord {
             steps: vec![step(0.0, 1.0, 1.0, 1.0)],
