@@ -145,8 +145,9 @@ pub struct Footprint {
     pub fixed: usize,
     /// Numbers kept one per run (or a few per run) because an exact statistic needs every
     /// run's value: gimpo's final ratios (their mean and standard deviation, in two passes
-    /// over the values as the report always computed them), maneuver-1d's detection
-    /// delays (medians and 95th percentiles). Never a run's per-step series.
+    /// over the values as the report always computed them). Never a run's per-step series.
+    /// (Percentiles of values on a grid need no such list: maneuver-1d counts its
+    /// detection delays per plot index.)
     pub per_run: usize,
 }
 
