@@ -140,10 +140,11 @@ mod tests {
 
     #[test]
     fn counts_give_the_sorted_list_statistics() {
-        // Plots at 1, 2, …, 10 s, switch at 3 s; runs detecting at plots 5, 3, 5, 9 and one
-        // missing: delays 3, 1, 3, 7 s (sorted 1, 3, 3, 7), exactly representable.
+        // Plots at 1, 2, …, 10 s (index k at k + 1 s), switch at 3 s; runs detecting at
+        // indices 5, 3, 5, 9 (6, 4, 6, 10 s) and one missing: delays 3, 1, 3, 7 s (sorted
+        // 1, 3, 3, 7), exactly representable.
         let mut d = DelayCounts::new(3.0, (1..=10).map(f64::from));
-        for k in [Some(4), Some(2), Some(4), Some(8), None] {
+        for k in [Some(5), Some(3), Some(5), Some(9), None] {
             d.add(k);
         }
         assert_eq!((d.detected_runs(), d.missed(), d.runs()), (4, 1, 5));
