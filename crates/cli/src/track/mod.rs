@@ -10,6 +10,7 @@
 //! multi-target tracker ([`multi`]); both write their rows through [`rows`].
 
 mod errors;
+mod feed;
 mod geo;
 mod job;
 mod multi;
@@ -52,17 +53,20 @@ pub fn run(
 ) -> Result<(usize, Option<PathBuf>), CliError> {
     let loaded = job::load_all(config)?;
     let reference = loaded.reference.as_ref();
-    let plots = plotfile::read(plots_path)?;
-    match loaded.job {
+    match &loaded.job {
         job::Job::Single { sensors, estimator } => {
+            let plots: Vec<_> = plotfile::read(plots_path)?
+                .into_iter()
+                .map(|p| loaded.to_reference(p))
+                .collect();
             let ctx = start::Ctx {
                 config,
                 plots_path,
-                sensors: &sensors,
+                sensors,
                 reference,
                 smoothing,
             };
-            let rows = single::run(&ctx, &estimator, &plots)?;
+            let rows = single::run(&ctx, estimator, &plots)?;
             let n = rows.rows();
             write_atomic(out, rows.into_text().as_bytes())?;
             Ok((n, None))
@@ -75,7 +79,9 @@ pub fn run(
                 reference,
                 smoothing,
             };
-            let (n, summary) = multi::run(&m, &files, &plots)?;
+            let plots =
+                plotfile::PlotReader::open(plots_path)?.map(|p| p.map(|p| loaded.to_reference(p)));
+            let (n, summary) = multi::run(m, &files, plots)?;
             Ok((n, Some(summary)))
         }
     }
