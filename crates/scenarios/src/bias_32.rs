@@ -10,6 +10,7 @@
 
 mod campaign;
 pub mod experiment;
+mod sums;
 
 use argus_core_math::Vector;
 use argus_registration::{Initiation, Linearization};
@@ -178,19 +179,18 @@ impl Scenario for Bias32 {
     }
 }
 
-/// The report of one campaign of configuration `c` from its runs' records, `elapsed` the
-/// runs' summed computing time (s).
+/// The report of one campaign of configuration `c` from its runs' averages `s`, their
+/// `plots` and `elapsed`, the runs' summed computing time (s).
 ///
 /// # Errors
 /// The summary's errors.
 #[allow(clippy::too_many_lines)]
 fn single_report(
     c: &ScenarioConfig,
-    recs: &[experiment::RunRecord],
+    s: &Summary,
+    plots: usize,
     elapsed: f64,
 ) -> Result<Report, ScenarioError> {
-    let plots: usize = recs.iter().map(|r| r.plots).sum();
-    let s = Summary::from_runs(recs, c.sensors.len())?;
     let end = s.times.len().saturating_sub(1);
     let at = |t: f64| s.index_at(t);
     let (comp, units) = (COMPONENTS, UNITS);

@@ -9,8 +9,11 @@
 //!    [`Campaign::one_run`], returning a record ([`Campaign::Run`], `Serialize +
 //!    Deserialize`) that holds **everything the reduce step reads of that run** — per-step
 //!    squared errors for RMS curves, detection indices for delays and their percentiles,
-//!    the trajectory when run 0 feeds a figure; and [`Campaign::reduce`] (or the streaming
-//!    [`Campaign::reduce_stream`]), the report from the records in run order.
+//!    the trajectory when run 0 feeds a figure; and the reduce step in three:
+//!    [`Campaign::start`] (the empty running state, [`Campaign::Sums`]),
+//!    [`Campaign::add`] (one run's record into it, in run order) and
+//!    [`Campaign::finish`] (the report). The state keeps sums, never the records: a
+//!    merge of any number of runs holds the same few per-step sums (see [`Footprint`]).
 //! 2. A run draws only from `run_rng(seed, run)` (the `rng` given) or from streams derived
 //!    from `seed` and `run` alone, never from state shared between runs, so that a run's
 //!    record does not depend on which other runs are computed with it.
@@ -50,6 +53,8 @@ pub trait Campaign: Sync {
     /// `Option<f64>` for a missing value (JSON has no NaN: a NaN would be written as
     /// `null` and rejected when read back).
     type Run: Serialize + DeserializeOwned + Send;
+    /// The reduce step's running state: what it keeps of the runs added so far.
+    type Sums: Retained;
 
     /// Builds the shared data.
     ///
@@ -72,17 +77,34 @@ pub trait Campaign: Sync {
         rng: &mut ChaCha8Rng,
     ) -> Result<Self::Run, ScenarioError>;
 
-    /// The report of the runs given, in run order.
+    /// The empty running state of the reduce step for a stream of `count` runs.
+    ///
+    /// # Errors
+    /// Whatever the reduce step refuses before any run (a bad parameter).
+    fn start(&self, setup: &Self::Setup, count: u64) -> Result<Self::Sums, ScenarioError>;
+
+    /// Adds the next run (in run order) to the running state. The state keeps what the
+    /// report needs of the run — sums over the runs, per step or pooled — and drops the
+    /// record, so that its size does not grow with the number of runs.
+    ///
+    /// # Errors
+    /// A record the reduce step cannot use (of another length than the first, say).
+    fn add(
+        &self,
+        setup: &Self::Setup,
+        sums: &mut Self::Sums,
+        run: Self::Run,
+    ) -> Result<(), ScenarioError>;
+
+    /// The report from the running state once every run is added.
     ///
     /// # Errors
     /// Whatever the metrics report (e.g. every run lost).
-    fn reduce(&self, setup: &Self::Setup, runs: &[Self::Run]) -> Result<Report, ScenarioError>;
+    fn finish(&self, setup: &Self::Setup, sums: Self::Sums) -> Result<Report, ScenarioError>;
 
-    /// The report of the `count` runs of a stream, in run order: what
-    /// [`Splittable::reduce_records`] calls. The default collects the parsed runs and calls
-    /// [`Campaign::reduce`] (memory grows with the parsed records, never with the files'
-    /// text); a scenario whose reduction is a fold over the runs overrides it to keep only
-    /// its running sums (gimpo does).
+    /// The report of the `count` runs of a stream, in run order, in one pass:
+    /// [`Campaign::start`], [`Campaign::add`] for each run, [`Campaign::finish`]. What
+    /// [`Splittable::reduce_records`] calls, for a whole run and a merge alike.
     ///
     /// # Errors
     /// The stream's first error (a record that does not parse), then the reduce step's.
@@ -92,9 +114,72 @@ pub trait Campaign: Sync {
         count: u64,
         runs: &mut dyn Iterator<Item = Result<Self::Run, ScenarioError>>,
     ) -> Result<Report, ScenarioError> {
-        let _ = count;
-        let runs = runs.collect::<Result<Vec<_>, _>>()?;
-        self.reduce(setup, &runs)
+        let sums = self.fold(setup, count, runs)?;
+        self.finish(setup, sums)
+    }
+
+    /// The running state after every run of the stream.
+    ///
+    /// # Errors
+    /// As [`Campaign::reduce_stream`].
+    fn fold(
+        &self,
+        setup: &Self::Setup,
+        count: u64,
+        runs: &mut dyn Iterator<Item = Result<Self::Run, ScenarioError>>,
+    ) -> Result<Self::Sums, ScenarioError> {
+        let mut sums = self.start(setup, count)?;
+        for r in runs {
+            self.add(setup, &mut sums, r?)?;
+        }
+        Ok(sums)
+    }
+}
+
+/// How much a reduce step's running state holds, in numbers (an `f64`, a count, an
+/// index: one each), split by how it grows.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Footprint {
+    /// Numbers whose count does not depend on the number of runs: per-step sums, pooled
+    /// sums, the first run's trajectory for a figure.
+    pub fixed: usize,
+    /// Numbers kept one per run (or a few per run) because an exact statistic needs every
+    /// run's value: gimpo's final ratios (their mean and standard deviation, in two passes
+    /// over the values as the report always computed them). Never a run's per-step series.
+    /// (Percentiles of values on a grid need no such list: maneuver-1d counts its
+    /// detection delays per plot index.)
+    pub per_run: usize,
+}
+
+impl std::ops::Add for Footprint {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            fixed: self.fixed + o.fixed,
+            per_run: self.per_run + o.per_run,
+        }
+    }
+}
+
+impl std::iter::Sum for Footprint {
+    fn sum<I: Iterator<Item = Self>>(iter: I) -> Self {
+        iter.fold(Self::default(), |a, b| a + b)
+    }
+}
+
+/// A reduce step's running state that can say how much it holds (for the tests that
+/// check a merge's memory does not grow with the number of runs).
+pub trait Retained {
+    /// The numbers the state holds.
+    fn footprint(&self) -> Footprint;
+}
+
+impl Retained for argus_sim::MetricsSums {
+    fn footprint(&self) -> Footprint {
+        Footprint {
+            fixed: self.retained(),
+            per_run: 0,
+        }
     }
 }
 
@@ -119,6 +204,18 @@ pub trait Splittable: Sync {
         count: u64,
         records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
     ) -> Result<Report, ScenarioError>;
+
+    /// As [`Splittable::reduce_records`], but returns how much the reduce step's running
+    /// state holds once every record is added, instead of the report.
+    ///
+    /// # Errors
+    /// As [`Splittable::reduce_records`].
+    fn footprint(
+        &self,
+        params: &Params,
+        count: u64,
+        records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
+    ) -> Result<Footprint, ScenarioError>;
 }
 
 /// One run's record as text, with where it came from (for error messages).
@@ -159,16 +256,34 @@ impl<C: Campaign> Splittable for C {
         records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
     ) -> Result<Report, ScenarioError> {
         let setup = self.setup(params)?;
-        let mut runs = records.map(|r| {
-            let r = r?;
-            serde_json::from_str::<C::Run>(&r.json).map_err(|e| ScenarioError::Record {
-                file: r.file.clone(),
-                line: r.line,
-                message: e.to_string(),
-            })
-        });
-        self.reduce_stream(&setup, count, &mut runs)
+        self.reduce_stream(&setup, count, &mut parsed::<C>(records))
     }
+
+    fn footprint(
+        &self,
+        params: &Params,
+        count: u64,
+        records: &mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
+    ) -> Result<Footprint, ScenarioError> {
+        let setup = self.setup(params)?;
+        Ok(self
+            .fold(&setup, count, &mut parsed::<C>(records))?
+            .footprint())
+    }
+}
+
+/// The records of a stream parsed one at a time.
+fn parsed<'a, C: Campaign>(
+    records: &'a mut dyn Iterator<Item = Result<RecordText, ScenarioError>>,
+) -> impl Iterator<Item = Result<C::Run, ScenarioError>> + 'a {
+    records.map(|r| {
+        let r = r?;
+        serde_json::from_str::<C::Run>(&r.json).map_err(|e| ScenarioError::Record {
+            file: r.file.clone(),
+            line: r.line,
+            message: e.to_string(),
+        })
+    })
 }
 
 /// In-process records as a stream of [`RecordText`] (no file), for

@@ -15,7 +15,7 @@ use argus_association::{
     AmplitudeModel, Associator, Candidate, ClutterModel, Gate, LinearSystem, NearestNeighbour, Pda,
     PerformancePredictor, PredictedFilter, PredictionStep, Psn, SteadyState, StrongestNeighbour,
 };
-use argus_core_math::{Gaussian, Matrix, Vector, anees_interval};
+use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{CovarianceForm, GaussianFilter, MeasurementPrediction};
 use argus_motion_models::{Cv2D, LinearMotionModel, MotionModel};
 use argus_sensors::CartesianPosition;
@@ -385,47 +385,6 @@ impl Prepared {
             .map(|(steps, lost)| RunRecord { steps, lost })
             .collect())
     }
-
-    /// The configuration's results from its runs' records (`all[i]`: run i's five
-    /// filter records), in run order.
-    ///
-    /// # Errors
-    /// The ANEES interval's or the predictors' errors.
-    pub(crate) fn result(&self, all: &[Vec<RunRecord>]) -> Result<ConfigResult, ScenarioError> {
-        let n_runs = all.len();
-        let mut filters = Vec::with_capacity(5);
-        for i in 0..5 {
-            let records: Vec<RunRecord> = all.iter().filter_map(|r| r.get(i).cloned()).collect();
-            let lost = records.iter().filter(|r| r.lost).count();
-            let metrics = Metrics::from_runs(&records, 4, 2, 0.5).ok();
-            let kept: Vec<&RunRecord> = records.iter().filter(|r| !r.lost).collect();
-            let half = self.c.steps / 2;
-            let (mut se, mut nees, mut cnt) = (0.0, 0.0, 0usize);
-            for r in &kept {
-                for s in r.steps.iter().skip(half) {
-                    se += s.pos_err_sq;
-                    nees += s.nees.unwrap_or(f64::NAN);
-                    cnt += 1;
-                }
-            }
-            let cnt = cnt.max(1) as f64;
-            let iv = anees_interval(4, kept.len().max(1), 0.95)?;
-            filters.push(FilterResult {
-                metrics,
-                lost,
-                runs: n_runs,
-                anees: nees / cnt,
-                rmse: (se / cnt).sqrt(),
-                interval: (iv.lower, iv.upper),
-            });
-        }
-        Ok(ConfigResult {
-            filters,
-            predicted_nn: predicted_rmse(&self.nn_pred, &self.p0)?,
-            predicted_hyca: predicted_rmse(&self.hyca, &self.p0)?,
-            predicted_pda: predicted_rmse(&self.pda_pred, &self.p0)?,
-        })
-    }
 }
 
 /// Runs one configuration over `runs` (seeded per run from `seed`): the tests' entry.
@@ -441,7 +400,11 @@ pub(crate) fn run_config(
 ) -> Result<ConfigResult, ScenarioError> {
     let prep = Prepared::new(c)?;
     let all = argus_sim::monte_carlo(seed, runs, |_, rng| prep.one(rng), tick)?;
-    prep.result(&all)
+    let mut sums = split::ConfigSums::new();
+    for r in &all {
+        sums.add(&prep, r);
+    }
+    split::result(&prep, &sums)
 }
 
 /// The configuration for density `density` and SNR `snr_db` from the parameters.
@@ -541,6 +504,7 @@ impl Scenario for Clutter {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use argus_core_math::anees_interval;
 
     fn reduced(density: f64, snr_db: f64) -> Config {
         Config {

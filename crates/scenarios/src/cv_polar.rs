@@ -13,15 +13,15 @@
 use argus_core_math::Vector;
 use argus_sensors::Measurement;
 use argus_sim::{
-    KinematicState, Metrics, RunRecord, Schedule, Segment, SensorId, SensorKind, SensorSpec,
-    StepRecord, Trajectory, Truth, generate_plots,
+    KinematicState, MetricsSums, Schedule, Segment, SensorId, SensorKind, SensorSpec, StepRecord,
+    Trajectory, Truth, generate_plots,
 };
 use serde::{Deserialize, Serialize};
 
 use crate::error::ScenarioError;
 use argus_filters::two_point_cv2;
 
-use crate::campaign::{Campaign, Splittable, run_whole};
+use crate::campaign::{Campaign, Footprint, Retained, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::estimator::{CvKf, cv_kf, position, step, unbiased};
 use crate::params::{ParamSpec, Params};
@@ -180,9 +180,27 @@ pub(crate) struct CvRun {
     steps: Vec<StepRow>,
 }
 
+/// What the reduce step keeps of the runs: the metrics' per-step sums and, per step, the
+/// sum of `tr P_pos` over the kept runs.
+pub(crate) struct CvSums {
+    metrics: MetricsSums,
+    var: Vec<f64>,
+    kept: usize,
+}
+
+impl Retained for CvSums {
+    fn footprint(&self) -> Footprint {
+        Footprint {
+            fixed: self.metrics.retained() + self.var.len() + 1,
+            per_run: 0,
+        }
+    }
+}
+
 impl Campaign for CvPolar {
     type Setup = Setup;
     type Run = CvRun;
+    type Sums = CvSums;
 
     fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let (truth, sensors) = self.scene(p)?;
@@ -251,43 +269,46 @@ impl Campaign for CvPolar {
         Ok(CvRun { lost, steps })
     }
 
-    #[allow(clippy::too_many_lines)]
-    fn reduce(&self, _setup: &Setup, runs: &[CvRun]) -> Result<Report, ScenarioError> {
-        let results: Vec<(RunRecord, Vec<f64>)> = runs
+    fn start(&self, _setup: &Setup, _count: u64) -> Result<CvSums, ScenarioError> {
+        Ok(CvSums {
+            metrics: MetricsSums::new(4, 2, WARMUP),
+            var: Vec::new(),
+            kept: 0,
+        })
+    }
+
+    fn add(&self, _setup: &Setup, sums: &mut CvSums, r: CvRun) -> Result<(), ScenarioError> {
+        let steps: Vec<StepRecord> = r
+            .steps
             .iter()
-            .map(|r| {
-                let steps = r
-                    .steps
-                    .iter()
-                    .map(|&(time, pos_err_sq, vel_err_sq, nees, nis, _)| StepRecord {
-                        time,
-                        pos_err_sq,
-                        vel_err_sq,
-                        nees,
-                        nis,
-                    })
-                    .collect();
-                let var = r.steps.iter().map(|st| st.5).collect();
-                (
-                    RunRecord {
-                        steps,
-                        lost: r.lost,
-                    },
-                    var,
-                )
+            .map(|&(time, pos_err_sq, vel_err_sq, nees, nis, _)| StepRecord {
+                time,
+                pos_err_sq,
+                vel_err_sq,
+                nees,
+                nis,
             })
             .collect();
-        let records: Vec<RunRecord> = results.iter().map(|(r, _)| r.clone()).collect();
-        let m = Metrics::from_runs(&records, 4, 2, WARMUP)?;
+        if sums.var.is_empty() {
+            sums.var = vec![-0.0; r.steps.len()];
+        }
+        sums.metrics.add_steps(r.lost, &steps);
+        if !r.lost {
+            for (a, st) in sums.var.iter_mut().zip(&r.steps) {
+                *a += st.5;
+            }
+            sums.kept += 1;
+        }
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn finish(&self, _setup: &Setup, sums: CvSums) -> Result<Report, ScenarioError> {
+        let m = sums.metrics.finish()?;
         // The filter's own RMS position error prediction: sqrt(mean over kept runs of tr P_pos).
-        let kept: Vec<&Vec<f64>> = results
-            .iter()
-            .filter(|(r, _)| !r.lost)
-            .map(|(_, v)| v)
-            .collect();
-        let n_kept = kept.len().max(1) as f64;
+        let n_kept = sums.kept.max(1) as f64;
         let pred_sd: Vec<f64> = (0..m.steps.len())
-            .map(|j| (kept.iter().filter_map(|v| v.get(j)).sum::<f64>() / n_kept).sqrt())
+            .map(|j| (sums.var.get(j).copied().unwrap_or(-0.0) / n_kept).sqrt())
             .collect();
         let first = m.first_averaged_step;
         let tail_n = pred_sd.len().saturating_sub(first).max(1) as f64;

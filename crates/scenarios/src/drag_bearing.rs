@@ -20,9 +20,9 @@ use argus_sim::{
 };
 use experiment::{DragBearingConfig, DragFilter, DragRun, reference_trajectory, simulate_run};
 use serde::{Deserialize, Serialize};
-use statistics::McSummary;
+use statistics::McSums;
 
-use crate::campaign::{Campaign, Splittable, run_whole};
+use crate::campaign::{Campaign, Footprint, Retained, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -240,9 +240,31 @@ impl From<&DragRecord> for DragRun {
     }
 }
 
+/// What the reduce step keeps: the statistics' sums and the first run (its trajectory
+/// and estimates feed the `first_run` series and Figs. 5–7).
+pub(crate) struct DragSums {
+    sums: McSums,
+    first: Option<DragRun>,
+}
+
+impl Retained for DragSums {
+    fn footprint(&self) -> Footprint {
+        let first = self.first.as_ref().map_or(0, |r| {
+            r.times.len()
+                + 4 * r.truth.len()
+                + r.estimates.iter().map(|e| 4 * e.len()).sum::<usize>()
+        });
+        Footprint {
+            fixed: self.sums.retained() + first,
+            per_run: 0,
+        }
+    }
+}
+
 impl Campaign for DragBearing {
     type Setup = DragBearingConfig;
     type Run = DragRecord;
+    type Sums = DragSums;
 
     fn setup(&self, p: &Params) -> Result<DragBearingConfig, ScenarioError> {
         config(p)
@@ -259,15 +281,31 @@ impl Campaign for DragBearing {
         Ok(DragRecord::from(&r))
     }
 
-    #[allow(clippy::too_many_lines)]
-    fn reduce(
+    fn start(&self, c: &DragBearingConfig, _count: u64) -> Result<DragSums, ScenarioError> {
+        Ok(DragSums {
+            sums: McSums::new(c),
+            first: None,
+        })
+    }
+
+    fn add(
         &self,
-        c: &DragBearingConfig,
-        records: &[DragRecord],
-    ) -> Result<Report, ScenarioError> {
-        let runs: Vec<DragRun> = records.iter().map(DragRun::from).collect();
+        _c: &DragBearingConfig,
+        sums: &mut DragSums,
+        run: DragRecord,
+    ) -> Result<(), ScenarioError> {
+        let run = DragRun::from(&run);
+        sums.sums.add(&run);
+        if sums.first.is_none() {
+            sums.first = Some(run);
+        }
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn finish(&self, c: &DragBearingConfig, sums: DragSums) -> Result<Report, ScenarioError> {
         let c = *c;
-        let s = McSummary::from_runs(&c, &runs).map_err(err)?;
+        let s = sums.sums.finish().map_err(err)?;
         let (turn, end) = (c.turn_time, c.duration);
         let last = (end - 10.0).max(turn);
         let mut rows = Vec::new();
@@ -380,7 +418,7 @@ impl Campaign for DragBearing {
             rows: rms_rows,
         }];
         let mut figures = Vec::new();
-        if let Some(r0) = runs.first() {
+        if let Some(r0) = &sums.first {
             let mut columns = vec![
                 "t".to_owned(),
                 "x_true".to_owned(),

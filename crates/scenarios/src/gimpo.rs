@@ -211,6 +211,7 @@ pub(crate) struct Setup {
 impl Campaign for Gimpo {
     type Setup = Setup;
     type Run = estimate::RunOut;
+    type Sums = sums::Sums;
 
     fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let (truth, sensors) = self.scene(p)?;
@@ -251,18 +252,9 @@ impl Campaign for Gimpo {
         s.est.run(&s.traj, run, &plots)
     }
 
-    fn reduce(&self, s: &Setup, runs: &[estimate::RunOut]) -> Result<Report, ScenarioError> {
-        self.reduce_stream(s, runs.len() as u64, &mut runs.iter().cloned().map(Ok))
-    }
-
-    /// One pass over the runs, keeping only [`sums::Sums`]: a merge of any number of runs
-    /// holds per-step sums and a few final ratios per run, not the runs' records.
-    fn reduce_stream(
-        &self,
-        s: &Setup,
-        count: u64,
-        runs: &mut dyn Iterator<Item = Result<estimate::RunOut, ScenarioError>>,
-    ) -> Result<Report, ScenarioError> {
+    /// Per-step sums and a few final ratios per run ([`sums::Sums`]): a merge of any
+    /// number of runs holds the per-step sums, not the runs' records.
+    fn start(&self, s: &Setup, count: u64) -> Result<sums::Sums, ScenarioError> {
         let t_end = s.traj.end();
         let first = s
             .times
@@ -270,10 +262,20 @@ impl Campaign for Gimpo {
             .position(|t| *t >= report::WARMUP * t_end)
             .unwrap_or(0);
         let expected = usize::try_from(count).unwrap_or(usize::MAX);
-        let mut sums = sums::Sums::new(s.times.clone(), first, expected);
-        for r in runs {
-            sums.add(&r?);
-        }
+        Ok(sums::Sums::new(s.times.clone(), first, expected))
+    }
+
+    fn add(
+        &self,
+        _s: &Setup,
+        sums: &mut sums::Sums,
+        run: estimate::RunOut,
+    ) -> Result<(), ScenarioError> {
+        sums.add(&run);
+        Ok(())
+    }
+
+    fn finish(&self, s: &Setup, sums: sums::Sums) -> Result<Report, ScenarioError> {
         report::report(&s.params, s.est.clip, &sums.finish()?)
     }
 }

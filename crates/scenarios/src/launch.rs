@@ -16,7 +16,7 @@ use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{Ekf, GaussianFilter};
 use argus_motion_models::Ca3D;
 use argus_sensors::{RadarNoise, Spherical3D, wrap_angle};
-use argus_sim::{ChaCha8Rng, Metrics, RunRecord, SensorSpec, StepRecord, Truth};
+use argus_sim::{ChaCha8Rng, MetricsSums, RunRecord, SensorSpec, StepRecord, Truth};
 use rand_distr::{Distribution, StandardNormal};
 
 use crate::campaign::{Campaign, Splittable, run_whole};
@@ -185,6 +185,8 @@ impl Campaign for Launch {
     type Setup = Setup;
     /// The steps of a run (the argus-sim record the metrics reduce).
     type Run = RunRecord;
+    /// The metrics' per-step sums.
+    type Sums = MetricsSums;
 
     fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let period = p.get("period")?;
@@ -273,9 +275,18 @@ impl Campaign for Launch {
         Ok(RunRecord { steps, lost })
     }
 
+    fn start(&self, _s: &Setup, _count: u64) -> Result<MetricsSums, ScenarioError> {
+        Ok(MetricsSums::new(6, 3, 0.1))
+    }
+
+    fn add(&self, _s: &Setup, sums: &mut MetricsSums, run: RunRecord) -> Result<(), ScenarioError> {
+        sums.add(&run);
+        Ok(())
+    }
+
     #[allow(clippy::too_many_lines)]
-    fn reduce(&self, _s: &Setup, records: &[RunRecord]) -> Result<Report, ScenarioError> {
-        let m = Metrics::from_runs(records, 6, 3, 0.1)?;
+    fn finish(&self, _s: &Setup, sums: MetricsSums) -> Result<Report, ScenarioError> {
+        let m = sums.finish()?;
         let mut report = Report::default();
         let no_number = "no number in the paper";
         report.rows.push(

@@ -56,10 +56,14 @@ pub mod experiments {
     /// Seed 001's drag-bearing Monte Carlo: configuration, one run, statistics.
     pub mod drag_bearing {
         pub use crate::drag_bearing::experiment::*;
-        pub use crate::drag_bearing::statistics::McSummary;
+        pub use crate::drag_bearing::statistics::{McSummary, McSums};
     }
     pub use crate::maneuver_1d::experiment as maneuver_1d;
-    pub use crate::rbs_landing::experiment as rbs_landing;
+    /// The rbs-landing experiment and its Monte Carlo statistics.
+    pub mod rbs_landing {
+        pub use crate::rbs_landing::experiment::*;
+        pub use crate::rbs_landing::summary::{McSummary, McSums, run_monte_carlo};
+    }
     /// The real-traffic scenario's tracker configurations, by name.
     pub mod real_traffic {
         pub use crate::real_traffic::trackers;
@@ -67,7 +71,7 @@ pub mod experiments {
 }
 
 pub use api::{RunOutput, ScenarioInfo, list, merge, run};
-pub use campaign::{Campaign, RecordText, Splittable, in_process, run_whole};
+pub use campaign::{Campaign, Footprint, RecordText, Retained, Splittable, in_process, run_whole};
 pub use context::{NoProgress, Progress, RunContext};
 pub use error::{ParamProblem, ScenarioError};
 pub use params::{ParamSpec, Params};

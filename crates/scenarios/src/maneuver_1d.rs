@@ -9,6 +9,7 @@
 //! draws from `ChaCha8Rng::seed_from_u64((s − 1)·2³² + i)`, so the default seed 1
 //! reproduces the test suite's runs. Parameters and results: `docs/papers/001-maneuver.md`.
 
+mod delays;
 pub mod experiment;
 
 use argus_adaptive::AdaptiveError;
@@ -18,11 +19,11 @@ use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
 };
 use experiment::{
-    CASE1, CASE2, Maneuver1dConfig, Outcome1d, Stats1d, noise_free_statistic, quantile,
+    CASE1, CASE2, Maneuver1dConfig, Outcome1d, Stats1d, Stats1dSums, noise_free_statistic,
     run_filters, simulate, within_derived,
 };
 
-use crate::campaign::{Campaign, Splittable, run_whole};
+use crate::campaign::{Campaign, Footprint, Retained, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -226,9 +227,32 @@ pub(crate) struct Setup {
     lambda: f64,
 }
 
+/// What the reduce step keeps: per case and (η, compensation) the statistics' sums, and
+/// for each η the maneuver-free run's at N = 0.
+pub(crate) struct Sums1d {
+    cases: Vec<Vec<Stats1dSums>>,
+    free_n0: Vec<Stats1dSums>,
+}
+
+impl Retained for Sums1d {
+    fn footprint(&self) -> Footprint {
+        Footprint {
+            fixed: self
+                .cases
+                .iter()
+                .flatten()
+                .chain(&self.free_n0)
+                .map(Stats1dSums::retained)
+                .sum(),
+            per_run: 0,
+        }
+    }
+}
+
 impl Campaign for Maneuver1d {
     type Setup = Setup;
     type Run = RunOutcomes;
+    type Sums = Sums1d;
 
     fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let (c, etas) = config(p)?;
@@ -246,8 +270,37 @@ impl Campaign for Maneuver1d {
         one_run(&s.c, &s.etas, run_seed(seed, run))
     }
 
+    fn start(&self, s: &Setup, _count: u64) -> Result<Sums1d, ScenarioError> {
+        let n0 = Maneuver1dConfig { min_age: 0, ..s.c };
+        Ok(Sums1d {
+            cases: CASES
+                .iter()
+                .map(|(_, windows)| {
+                    (0..s.etas.len() * COMPS.len())
+                        .map(|_| Stats1dSums::new(&s.c, windows))
+                        .collect()
+                })
+                .collect(),
+            free_n0: s.etas.iter().map(|_| Stats1dSums::new(&n0, &[])).collect(),
+        })
+    }
+
+    fn add(&self, _s: &Setup, sums: &mut Sums1d, run: RunOutcomes) -> Result<(), ScenarioError> {
+        for (acc, outs) in sums.cases.iter_mut().zip(&run) {
+            for (a, o) in acc.iter_mut().zip(outs) {
+                a.add(o);
+            }
+        }
+        if let Some(outs) = run.get(CASES.len()) {
+            for (a, o) in sums.free_n0.iter_mut().zip(outs) {
+                a.add(o);
+            }
+        }
+        Ok(())
+    }
+
     #[allow(clippy::too_many_lines)]
-    fn reduce(&self, s: &Setup, per_run: &[RunOutcomes]) -> Result<Report, ScenarioError> {
+    fn finish(&self, s: &Setup, sums: Sums1d) -> Result<Report, ScenarioError> {
         let Setup { c, etas, lambda } = s;
         let (c, etas, lambda) = (*c, *etas, *lambda);
 
@@ -259,15 +312,11 @@ impl Campaign for Maneuver1d {
             .flat_map(|&eta| COMPS.iter().map(move |&(n, comp)| (eta, n, comp)))
             .collect();
         for (ci, (case, windows)) in CASES.iter().enumerate() {
-            let stats: Vec<Stats1d> = (0..combos.len())
-                .map(|j| {
-                    let outs: Vec<Outcome1d> = per_run
-                        .iter()
-                        .filter_map(|r| r.get(ci).and_then(|v| v.get(j)).cloned())
-                        .collect();
-                    Stats1d::from_outcomes(&c, windows, &outs)
-                })
-                .collect();
+            let stats: Vec<Stats1d> = sums
+                .cases
+                .get(ci)
+                .map(|v| v.iter().map(Stats1dSums::finish).collect())
+                .unwrap_or_default();
             let Some(first) = stats.first() else { continue };
             if windows.is_empty() {
                 for ((eta, comp_name, _), s) in combos.iter().zip(&stats) {
@@ -297,13 +346,8 @@ impl Campaign for Maneuver1d {
                     ));
                 }
                 // Like with like: SPEC's re-implementation counted at N = 0.
-                let n0 = Maneuver1dConfig { min_age: 0, ..c };
-                for (j, eta) in etas.iter().enumerate() {
-                    let outs: Vec<Outcome1d> = per_run
-                        .iter()
-                        .filter_map(|r| r.get(CASES.len()).and_then(|v| v.get(j)).cloned())
-                        .collect();
-                    let s = Stats1d::from_outcomes(&n0, windows, &outs);
+                for (eta, acc) in etas.iter().zip(&sums.free_n0) {
+                    let s = acc.finish();
                     rows.push(Row::with_text(
                         format!("free_glrt_n0_eta{eta}_detections_per_run"),
                         format!("no maneuver, glrt, N = 0, eta {eta}: detections per run"),
@@ -359,17 +403,16 @@ impl Campaign for Maneuver1d {
                     "",
                 ));
                 for (i, sw) in s.switches.iter().enumerate() {
-                    let d = s.detected_delays(i);
                     rows.push(Row::with_text(
                         format!("{k}_delay_median_{i}"),
                         format!("{q}: median delay after switch at {sw} s"),
                         None,
-                        quantile(&d, 0.5),
+                        s.detected_quantile(i, 0.5),
                         "s",
                         &format!(
                             "95th pct {:.2} s, max {:.2} s, missed in {} runs",
-                            quantile(&d, 0.95),
-                            quantile(&d, 1.0),
+                            s.detected_quantile(i, 0.95),
+                            s.detected_quantile(i, 1.0),
                             s.missed(i)
                         ),
                     ));

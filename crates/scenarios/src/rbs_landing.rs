@@ -7,7 +7,8 @@
 //! figures (Figs. 2–12) and the summary table. Every open parameter is documented in
 //! `docs/papers/003-rbs-landing.md`.
 
-pub mod experiment;
+pub(crate) mod experiment;
+pub(crate) mod summary;
 
 use argus_adaptive::AdaptiveError;
 use argus_adaptive::FrameHandling;
@@ -15,9 +16,10 @@ use argus_core_math::Vector;
 use argus_sim::{
     KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
 };
-use experiment::{FILTERS, FilterKind, McSummary, RbsLandingConfig, RunSeries, simulate_run};
+use experiment::{FILTERS, FilterKind, RbsLandingConfig, RunSeries, simulate_run};
+use summary::McSums;
 
-use crate::campaign::{Campaign, Splittable, run_whole};
+use crate::campaign::{Campaign, Footprint, Retained, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
@@ -183,10 +185,21 @@ impl Scenario for RbsLanding {
     }
 }
 
+impl Retained for Vec<McSums> {
+    fn footprint(&self) -> Footprint {
+        Footprint {
+            fixed: self.iter().map(McSums::retained).sum(),
+            per_run: 0,
+        }
+    }
+}
+
 impl Campaign for RbsLanding {
     type Setup = RbsLandingConfig;
     /// One [`RunSeries`] per case of [`CASES`].
     type Run = Vec<RunSeries>;
+    /// One [`McSums`] per case.
+    type Sums = Vec<McSums>;
 
     fn setup(&self, p: &Params) -> Result<RbsLandingConfig, ScenarioError> {
         config(p)
@@ -210,17 +223,29 @@ impl Campaign for RbsLanding {
             .collect()
     }
 
-    #[allow(clippy::too_many_lines)]
-    fn reduce(
+    fn start(&self, c: &RbsLandingConfig, count: u64) -> Result<Vec<McSums>, ScenarioError> {
+        let expected = usize::try_from(count).unwrap_or(usize::MAX);
+        Ok(CASES.iter().map(|_| McSums::new(expected, c.dt)).collect())
+    }
+
+    fn add(
         &self,
-        c: &RbsLandingConfig,
-        runs: &[Vec<RunSeries>],
-    ) -> Result<Report, ScenarioError> {
-        let mut summaries = Vec::with_capacity(CASES.len());
-        for ci in 0..CASES.len() {
-            let series: Vec<RunSeries> = runs.iter().filter_map(|r| r.get(ci).cloned()).collect();
-            summaries.push(McSummary::from_runs(&series, c.dt)?);
+        _c: &RbsLandingConfig,
+        sums: &mut Vec<McSums>,
+        run: Vec<RunSeries>,
+    ) -> Result<(), ScenarioError> {
+        for (acc, series) in sums.iter_mut().zip(&run) {
+            acc.add(series);
         }
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn finish(&self, _c: &RbsLandingConfig, sums: Vec<McSums>) -> Result<Report, ScenarioError> {
+        let summaries = sums
+            .iter()
+            .map(McSums::finish)
+            .collect::<Result<Vec<_>, _>>()?;
 
         let mut rows = Vec::new();
         let mut series = Vec::new();

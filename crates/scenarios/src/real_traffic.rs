@@ -26,6 +26,7 @@ mod radar;
 mod report;
 mod setup;
 mod smooth;
+mod sums;
 mod truth;
 
 pub(crate) use setup::Setup;
@@ -55,6 +56,7 @@ use crate::params::{ParamSpec, Params};
 use crate::report::Report;
 use crate::scenario::{Scenario, Simulated};
 use setup::RealRun;
+use sums::RealSums;
 
 /// The `real-traffic` scenario.
 pub(crate) struct RealTraffic;
@@ -104,6 +106,7 @@ impl Scenario for RealTraffic {
 impl Campaign for RealTraffic {
     type Setup = Setup;
     type Run = RealRun;
+    type Sums = RealSums;
 
     fn setup(&self, params: &Params) -> Result<Setup, ScenarioError> {
         Setup::new(params)
@@ -119,7 +122,16 @@ impl Campaign for RealTraffic {
         s.one_run(run, rng)
     }
 
-    fn reduce(&self, s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioError> {
-        report::reduce(s, runs)
+    fn start(&self, s: &Setup, _count: u64) -> Result<RealSums, ScenarioError> {
+        Ok(RealSums::new(s.trackers.len()))
+    }
+
+    fn add(&self, _s: &Setup, sums: &mut RealSums, run: RealRun) -> Result<(), ScenarioError> {
+        sums.add(run);
+        Ok(())
+    }
+
+    fn finish(&self, s: &Setup, sums: RealSums) -> Result<Report, ScenarioError> {
+        report::reduce(s, &sums)
     }
 }

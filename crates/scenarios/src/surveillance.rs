@@ -40,6 +40,7 @@
 
 mod report;
 mod setup;
+mod sums;
 
 use argus_core_math::Vector;
 use argus_sim::{ChaCha8Rng, SensorSpec, Truth};
@@ -51,6 +52,7 @@ use crate::params::{ParamSpec, Params};
 use crate::report::Report;
 use crate::scenario::Scenario;
 use setup::{Setup, SurvRun};
+use sums::SurvSums;
 
 /// The `surveillance` scenario.
 pub(crate) struct Surveillance;
@@ -194,6 +196,7 @@ impl Scenario for Surveillance {
 impl Campaign for Surveillance {
     type Setup = Setup;
     type Run = SurvRun;
+    type Sums = SurvSums;
 
     fn setup(&self, params: &Params) -> Result<Setup, ScenarioError> {
         Setup::new(params)
@@ -228,7 +231,16 @@ impl Campaign for Surveillance {
         Ok(SurvRun { configs })
     }
 
-    fn reduce(&self, s: &Setup, runs: &[SurvRun]) -> Result<Report, ScenarioError> {
-        report::reduce(s, runs)
+    fn start(&self, s: &Setup, _count: u64) -> Result<SurvSums, ScenarioError> {
+        Ok(SurvSums::new(s))
+    }
+
+    fn add(&self, s: &Setup, sums: &mut SurvSums, run: SurvRun) -> Result<(), ScenarioError> {
+        sums.add(s, &run);
+        Ok(())
+    }
+
+    fn finish(&self, s: &Setup, sums: SurvSums) -> Result<Report, ScenarioError> {
+        report::reduce(s, &sums)
     }
 }

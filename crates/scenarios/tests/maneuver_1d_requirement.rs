@@ -22,12 +22,8 @@ fn exceeds(v: f64, bound: f64) -> bool {
 
 /// Fraction of the runs whose switch `i` was detected within 0.5 s.
 fn within_switch(s: &Stats1d, i: usize) -> (usize, usize) {
-    let v = &s.delays[i];
-    let hit = v
-        .iter()
-        .filter(|d| d.is_some_and(|d| d <= 0.5 + 1e-9))
-        .count();
-    (hit, v.len())
+    let d = &s.delays[i];
+    (d.within(0.5), d.runs())
 }
 
 #[test]

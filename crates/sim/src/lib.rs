@@ -58,7 +58,7 @@ mod truth;
 /// The workspace's sensor id (defined in `argus-sensors`), re-exported for scenarios.
 pub use argus_sensors::SensorId;
 pub use error::SimError;
-pub use metrics::{Interval, Metrics, RunRecord, StepMetrics, StepRecord};
+pub use metrics::{Interval, Metrics, MetricsSums, RunRecord, StepMetrics, StepRecord};
 pub use montecarlo::{monte_carlo, run_rng};
 pub use ospa::{Gospa, GospaValue, Ospa, OspaValue};
 pub use plots::{

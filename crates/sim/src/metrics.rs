@@ -139,15 +139,232 @@ impl Interval {
     }
 }
 
-fn mean(xs: impl Iterator<Item = f64>) -> Option<f64> {
-    let (s, n) = xs.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
-    (n > 0).then(|| s / n as f64)
+/// The per-step sums over the kept runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct StepSums {
+    /// Time of the first kept run's step.
+    time: f64,
+    pos: f64,
+    vel: f64,
+    nees: f64,
+    nees_runs: usize,
+    nis: f64,
+    nis_runs: usize,
+    runs: usize,
+}
+
+/// `(Σ, count)`.
+type Pooled = (f64, usize);
+
+fn pool(acc: &mut Pooled, x: f64) {
+    acc.0 += x;
+    acc.1 += 1;
+}
+
+fn pooled_mean(p: Pooled) -> Option<f64> {
+    (p.1 > 0).then(|| p.0 / p.1 as f64)
+}
+
+/// [`Metrics`] accumulated one run at a time, in run order: per-step sums and the
+/// pooled sums of the time averages, so that reducing any number of runs holds a few
+/// numbers per step and none per run. Each sum adds the same values in the same order
+/// as [`Metrics::from_runs`] over all the runs, which is a fold over this.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MetricsSums {
+    state_dim: usize,
+    meas_dim: usize,
+    warmup: f64,
+    runs: usize,
+    lost: usize,
+    /// The first run's step count (the grid every run must share).
+    steps_per_run: Option<usize>,
+    first_averaged_step: usize,
+    /// The first run of another step count: `(index, steps)`.
+    ragged: Option<(usize, usize)>,
+    steps: Vec<StepSums>,
+    tail_pos: Pooled,
+    tail_vel: Pooled,
+    tail_nees: Pooled,
+    tail_nis: Pooled,
+}
+
+impl MetricsSums {
+    /// Empty sums; `warmup` as in [`Metrics::from_runs`] (checked by
+    /// [`MetricsSums::finish`]).
+    #[must_use]
+    pub fn new(state_dim: usize, meas_dim: usize, warmup: f64) -> Self {
+        Self {
+            state_dim,
+            meas_dim,
+            warmup,
+            runs: 0,
+            lost: 0,
+            steps_per_run: None,
+            first_averaged_step: 0,
+            ragged: None,
+            steps: Vec::new(),
+            tail_pos: (0.0, 0),
+            tail_vel: (0.0, 0),
+            tail_nees: (0.0, 0),
+            tail_nis: (0.0, 0),
+        }
+    }
+
+    /// Adds the next run.
+    pub fn add(&mut self, run: &RunRecord) {
+        self.add_steps(run.lost, &run.steps);
+    }
+
+    /// Adds the next run given as its steps and whether its track was lost.
+    pub fn add_steps(&mut self, lost: bool, steps: &[StepRecord]) {
+        let index = self.runs;
+        self.runs += 1;
+        let k = *self.steps_per_run.get_or_insert_with(|| {
+            self.first_averaged_step = ((self.warmup.clamp(0.0, 1.0) * steps.len() as f64).ceil()
+                as usize)
+                .min(steps.len());
+            steps.len()
+        });
+        if self.steps.is_empty() {
+            // Sized by the first run, so that the sums hold as much after one run as after
+            // any number; the times are the first kept run's.
+            self.steps = vec![
+                StepSums {
+                    time: f64::NAN,
+                    pos: 0.0,
+                    vel: 0.0,
+                    nees: 0.0,
+                    nees_runs: 0,
+                    nis: 0.0,
+                    nis_runs: 0,
+                    runs: 0,
+                };
+                k
+            ];
+        }
+        if steps.len() != k {
+            self.ragged.get_or_insert((index, steps.len()));
+        }
+        if lost {
+            self.lost += 1;
+        }
+        if lost || self.ragged.is_some() {
+            return;
+        }
+        if self.lost + 1 == self.runs {
+            // The first kept run.
+            for (acc, s) in self.steps.iter_mut().zip(steps) {
+                acc.time = s.time;
+            }
+        }
+        for (acc, s) in self.steps.iter_mut().zip(steps) {
+            acc.pos += s.pos_err_sq;
+            acc.vel += s.vel_err_sq;
+            acc.runs += 1;
+            if let Some(v) = s.nees {
+                acc.nees += v;
+                acc.nees_runs += 1;
+            }
+            if let Some(v) = s.nis {
+                acc.nis += v;
+                acc.nis_runs += 1;
+            }
+        }
+        for s in steps.iter().skip(self.first_averaged_step) {
+            pool(&mut self.tail_pos, s.pos_err_sq);
+            pool(&mut self.tail_vel, s.vel_err_sq);
+            if let Some(v) = s.nees {
+                pool(&mut self.tail_nees, v);
+            }
+            if let Some(v) = s.nis {
+                pool(&mut self.tail_nis, v);
+            }
+        }
+    }
+
+    /// How many numbers the sums hold: 8 per step plus a fixed few, whatever the number
+    /// of runs added.
+    #[must_use]
+    pub fn retained(&self) -> usize {
+        8 * self.steps.len() + 16
+    }
+
+    /// The metrics of the runs added.
+    ///
+    /// # Errors
+    /// As [`Metrics::from_runs`]: [`SimError::InvalidParameter`] for `warmup ∉ [0, 1]`,
+    /// [`SimError::Empty`] with no run or no kept run, [`SimError::RaggedRuns`] when runs
+    /// have different step counts.
+    pub fn finish(&self) -> Result<Metrics, SimError> {
+        probability("warm-up share", self.warmup)?;
+        let Some(k) = self.steps_per_run else {
+            return Err(SimError::Empty { what: "run" });
+        };
+        if let Some((run, got)) = self.ragged {
+            return Err(SimError::RaggedRuns {
+                first: 0,
+                run,
+                expected: k,
+                got,
+            });
+        }
+        let n = self.runs - self.lost;
+        if n == 0 {
+            return Err(SimError::Empty {
+                what: "run that kept its track",
+            });
+        }
+        let interval = |dim: usize, count: usize| {
+            if dim == 0 || count == 0 {
+                Ok(None)
+            } else {
+                anees_interval(dim, count, 0.95).map(|iv| {
+                    Some(Interval {
+                        lower: iv.lower,
+                        upper: iv.upper,
+                    })
+                })
+            }
+        };
+        let steps = self
+            .steps
+            .iter()
+            .map(|s| {
+                let mean = |sum: f64, count: usize| pooled_mean((sum, count));
+                StepMetrics {
+                    time: if s.runs > 0 { s.time } else { f64::NAN },
+                    rmse_pos: mean(s.pos, s.runs).unwrap_or(0.0).sqrt(),
+                    rmse_vel: mean(s.vel, s.runs).unwrap_or(0.0).sqrt(),
+                    anees: mean(s.nees, s.nees_runs),
+                    anis: mean(s.nis, s.nis_runs),
+                    nees_runs: s.nees_runs,
+                    nis_runs: s.nis_runs,
+                }
+            })
+            .collect();
+        Ok(Metrics {
+            runs: self.runs,
+            lost: self.lost,
+            state_dim: self.state_dim,
+            meas_dim: self.meas_dim,
+            first_averaged_step: self.first_averaged_step,
+            avg_rmse_pos: pooled_mean(self.tail_pos).unwrap_or(f64::NAN).sqrt(),
+            avg_rmse_vel: pooled_mean(self.tail_vel).unwrap_or(f64::NAN).sqrt(),
+            avg_anees: pooled_mean(self.tail_nees),
+            avg_anis: pooled_mean(self.tail_nis),
+            anees_interval: interval(self.state_dim, n)?,
+            anis_interval: interval(self.meas_dim, n)?,
+            avg_anees_interval: interval(self.state_dim, self.tail_nees.1)?,
+            steps,
+        })
+    }
 }
 
 impl Metrics {
     /// Reduces runs (in the order given, so the result is independent of how they were
     /// computed) into per-step and time-averaged metrics. `warmup` is the share of steps
-    /// excluded from the time averages (seed 000 excludes the first 25 %).
+    /// excluded from the time averages (seed 000 excludes the first 25 %). A fold of the
+    /// runs through [`MetricsSums`].
     ///
     /// # References
     /// NEES, NIS, their averages and chi-square intervals: Bar-Shalom, Li & Kirubarajan
@@ -162,85 +379,11 @@ impl Metrics {
         meas_dim: usize,
         warmup: f64,
     ) -> Result<Self, SimError> {
-        probability("warm-up share", warmup)?;
-        let first = runs.first().ok_or(SimError::Empty { what: "run" })?;
-        let k = first.steps.len();
-        for (i, r) in runs.iter().enumerate() {
-            if r.steps.len() != k {
-                return Err(SimError::RaggedRuns {
-                    first: 0,
-                    run: i,
-                    expected: k,
-                    got: r.steps.len(),
-                });
-            }
+        let mut sums = MetricsSums::new(state_dim, meas_dim, warmup);
+        for r in runs {
+            sums.add(r);
         }
-        let kept: Vec<&RunRecord> = runs.iter().filter(|r| !r.lost).collect();
-        let lost = runs.len() - kept.len();
-        if kept.is_empty() {
-            return Err(SimError::Empty {
-                what: "run that kept its track",
-            });
-        }
-        let n = kept.len();
-        let steps: Vec<StepMetrics> = (0..k)
-            .map(|j| {
-                let at = |r: &&RunRecord| r.steps.get(j).copied();
-                let recs: Vec<StepRecord> = kept.iter().filter_map(at).collect();
-                let nees: Vec<f64> = recs.iter().filter_map(|s| s.nees).collect();
-                let nis: Vec<f64> = recs.iter().filter_map(|s| s.nis).collect();
-                StepMetrics {
-                    time: recs.first().map_or(f64::NAN, |s| s.time),
-                    rmse_pos: mean(recs.iter().map(|s| s.pos_err_sq))
-                        .unwrap_or(0.0)
-                        .sqrt(),
-                    rmse_vel: mean(recs.iter().map(|s| s.vel_err_sq))
-                        .unwrap_or(0.0)
-                        .sqrt(),
-                    anees: mean(nees.iter().copied()),
-                    anis: mean(nis.iter().copied()),
-                    nees_runs: nees.len(),
-                    nis_runs: nis.len(),
-                }
-            })
-            .collect();
-        let first_averaged_step = ((warmup * k as f64).ceil() as usize).min(k);
-        let tail = || {
-            kept.iter()
-                .flat_map(|r| r.steps.iter().skip(first_averaged_step))
-        };
-        let avg_nees_values = tail().filter_map(|s| s.nees).count();
-        let interval = |dim: usize, count: usize| {
-            if dim == 0 || count == 0 {
-                Ok(None)
-            } else {
-                anees_interval(dim, count, 0.95).map(|iv| {
-                    Some(Interval {
-                        lower: iv.lower,
-                        upper: iv.upper,
-                    })
-                })
-            }
-        };
-        Ok(Self {
-            runs: runs.len(),
-            lost,
-            state_dim,
-            meas_dim,
-            first_averaged_step,
-            avg_rmse_pos: mean(tail().map(|s| s.pos_err_sq))
-                .unwrap_or(f64::NAN)
-                .sqrt(),
-            avg_rmse_vel: mean(tail().map(|s| s.vel_err_sq))
-                .unwrap_or(f64::NAN)
-                .sqrt(),
-            avg_anees: mean(tail().filter_map(|s| s.nees)),
-            avg_anis: mean(tail().filter_map(|s| s.nis)),
-            anees_interval: interval(state_dim, n)?,
-            anis_interval: interval(meas_dim, n)?,
-            avg_anees_interval: interval(state_dim, avg_nees_values)?,
-            steps,
-        })
+        sums.finish()
     }
 }
 
@@ -293,6 +436,36 @@ mod tests {
         let iv = m.anees_interval.unwrap();
         assert!((iv.lower - 2.179_731 / 2.0).abs() < 1e-5, "{iv:?}");
         assert!((iv.upper - 17.534_546 / 2.0).abs() < 1e-5, "{iv:?}");
+    }
+
+    #[test]
+    fn sums_hold_the_same_numbers_whatever_the_runs() {
+        // A lost first run sizes the sums; the times come from the first kept run (1.5,
+        // 2.5), and the metrics equal those of the same runs in another order of the lost
+        // one (lost runs are left out of every sum).
+        let lost = RunRecord {
+            steps: vec![step(0.0, 1e9, 1e9, 1e9), step(1.0, 1e9, 1e9, 1e9)],
+            lost: true,
+        };
+        let kept = |p: f64| RunRecord {
+            steps: vec![step(1.5, p, 1.0, 2.0), step(2.5, p, 1.0, 4.0)],
+            lost: false,
+        };
+        let mut sums = MetricsSums::new(4, 2, 0.5);
+        sums.add(&lost);
+        let after_one = sums.retained();
+        for p in [1.0, 2.0, 3.0] {
+            sums.add(&kept(p));
+        }
+        // Tolerance: none — the sums are sized by the first run's two steps.
+        assert_eq!(sums.retained(), after_one);
+        let m = sums.finish().unwrap();
+        assert_eq!(m.steps[0].time.to_bits(), 1.5f64.to_bits());
+        assert_eq!(m.lost, 1);
+        let other = Metrics::from_runs(&[kept(1.0), kept(2.0), lost, kept(3.0)], 4, 2, 0.5);
+        let other = other.unwrap();
+        assert_eq!(format!("{:?}", m.steps), format!("{:?}", other.steps));
+        assert_eq!(m.avg_rmse_pos.to_bits(), other.avg_rmse_pos.to_bits());
     }
 
     #[test]

@@ -8,9 +8,10 @@ use argus_sim::{ChaCha8Rng, run_rng};
 use rand_distr::{Distribution, StandardNormal};
 use serde::{Deserialize, Serialize};
 
-use super::experiment::{RunRecord, ScenarioConfig, Summary, run};
+use super::experiment::{RunRecord, ScenarioConfig, run};
+use super::sums::SummarySums;
 use super::{Bias32, COMPONENTS, UNITS, config, single_report};
-use crate::campaign::Campaign;
+use crate::campaign::{Campaign, Footprint, Retained};
 use crate::error::ScenarioError;
 use crate::params::Params;
 use crate::report::{Report, Row, Series};
@@ -37,19 +38,27 @@ pub(crate) struct CellRun {
     seconds: f64,
 }
 
-/// Cell `k`'s records in run order and their summed computing time.
-fn cell_runs(runs: &[Vec<CellRun>], k: usize) -> (Vec<RunRecord>, f64) {
-    let cells: Vec<&CellRun> = runs.iter().filter_map(|r| r.get(k)).collect();
-    let seconds = cells.iter().map(|c| c.seconds).sum();
-    (
-        cells.into_iter().map(|c| c.record.clone()).collect(),
-        seconds,
-    )
+/// One cell's runs: the averages' sums, the plots and the computing time summed over the
+/// runs (in run order).
+pub(crate) struct CellSums {
+    sums: SummarySums,
+    plots: usize,
+    seconds: f64,
+}
+
+impl Retained for Vec<CellSums> {
+    fn footprint(&self) -> Footprint {
+        Footprint {
+            fixed: self.iter().map(|c| c.sums.retained() + 2).sum(),
+            per_run: 0,
+        }
+    }
 }
 
 impl Campaign for Bias32 {
     type Setup = Setup;
     type Run = Vec<CellRun>;
+    type Sums = Vec<CellSums>;
 
     fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let (sensors, targets) = (p.list("sensors")?, p.list("targets")?);
@@ -91,30 +100,56 @@ impl Campaign for Bias32 {
             .collect()
     }
 
-    fn reduce(&self, s: &Setup, runs: &[Vec<CellRun>]) -> Result<Report, ScenarioError> {
-        if s.sweep {
-            return sweep_report(s, runs);
+    fn start(&self, s: &Setup, _count: u64) -> Result<Vec<CellSums>, ScenarioError> {
+        Ok(s.cells
+            .iter()
+            .map(|_| CellSums {
+                sums: SummarySums::new(),
+                plots: 0,
+                seconds: -0.0,
+            })
+            .collect())
+    }
+
+    fn add(
+        &self,
+        _s: &Setup,
+        sums: &mut Vec<CellSums>,
+        run: Vec<CellRun>,
+    ) -> Result<(), ScenarioError> {
+        for (acc, cell) in sums.iter_mut().zip(&run) {
+            acc.sums.add(&cell.record);
+            acc.plots += cell.record.plots;
+            acc.seconds += cell.seconds;
         }
-        let cell = s.cells.first().ok_or_else(|| ScenarioError::Degenerate {
-            scenario: "bias-32",
-            message: "no (sensors, targets) cell".into(),
-        })?;
-        let (recs, elapsed) = cell_runs(runs, 0);
-        single_report(&cell.config, &recs, elapsed)
+        Ok(())
+    }
+
+    fn finish(&self, s: &Setup, sums: Vec<CellSums>) -> Result<Report, ScenarioError> {
+        if s.sweep {
+            return sweep_report(s, &sums);
+        }
+        let (Some(cell), Some(acc)) = (s.cells.first(), sums.first()) else {
+            return Err(ScenarioError::Degenerate {
+                scenario: "bias-32",
+                message: "no (sensors, targets) cell".into(),
+            });
+        };
+        let summary = acc.sums.finish(cell.config.sensors.len())?;
+        single_report(&cell.config, &summary, acc.plots, acc.seconds)
     }
 }
 
 /// The sweep over every (sensors, targets) combination: per combination its computing
 /// time per plot and its final bias RMSE, from the runs' records.
-fn sweep_report(s: &Setup, runs: &[Vec<CellRun>]) -> Result<Report, ScenarioError> {
+fn sweep_report(s: &Setup, sums: &[CellSums]) -> Result<Report, ScenarioError> {
     let mut rows = Vec::new();
     let mut table = Vec::new();
-    for (k, cell) in s.cells.iter().enumerate() {
+    for (cell, acc) in s.cells.iter().zip(sums) {
         {
             let (s_count, n, c) = (cell.sensors, cell.targets, &cell.config);
-            let (recs, elapsed) = cell_runs(runs, k);
-            let plots: usize = recs.iter().map(|r| r.plots).sum();
-            let sum = Summary::from_runs(&recs, s_count)?;
+            let (plots, elapsed) = (acc.plots, acc.seconds);
+            let sum = acc.sums.finish(s_count)?;
             let cost = elapsed / plots.max(1) as f64 * 1e6;
             let tag = format!("s{s_count}_n{n}");
             let what = format!("S={s_count}, N={n}");

@@ -5,6 +5,7 @@
 //! does), so the report is the same bit for bit.
 
 use super::estimate::{RunOut, STARTS};
+use crate::campaign::{Footprint, Retained};
 use crate::error::ScenarioError;
 
 const N: usize = STARTS.len();
@@ -13,7 +14,7 @@ const N: usize = STARTS.len();
 pub(super) type Tail = (f64, f64);
 
 /// The accumulated statistics of the runs.
-pub(super) struct Sums {
+pub(crate) struct Sums {
     /// Plot times after the two initialising plots (the same in every run).
     pub(super) times: Vec<f64>,
     /// First step of the RMS window.
@@ -160,5 +161,32 @@ impl Sums {
     /// RMS of a tail sum.
     pub(super) fn rms(t: Tail) -> f64 {
         (t.0 / t.1.max(1.0)).sqrt()
+    }
+}
+
+fn lens<'a>(v: impl IntoIterator<Item = &'a Vec<f64>>) -> usize {
+    v.into_iter().map(Vec::len).sum()
+}
+
+impl Retained for Sums {
+    fn footprint(&self) -> Footprint {
+        let pairs = |a: &[[Vec<f64>; 2]; N]| lens(a.iter().flatten());
+        Footprint {
+            fixed: self.times.len()
+                + 2 * (1 + 5 * N)
+                + lens(&self.step_fixed)
+                + lens(&self.step_multi)
+                + pairs(&self.step_vb)
+                + pairs(&self.step_ev)
+                + pairs(&self.step_df)
+                + 3 * self.step_mu.len()
+                + 6 * self.track.len(),
+            // The final ratios, one per estimator and axis per run: their mean and
+            // standard deviation are computed in two passes over the values.
+            per_run: lens(&self.last_multi)
+                + pairs(&self.last_vb)
+                + pairs(&self.last_ev)
+                + pairs(&self.last_df),
+        }
     }
 }

@@ -27,6 +27,9 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 
+pub use super::delays::DelayCounts;
+use super::delays::nearest_rank;
+
 use argus_adaptive::{
     AdaptiveError, Compensation, FailureKind, GlrtConfig, ManeuverFilter, ManeuverState, ModelInput,
 };
@@ -274,9 +277,9 @@ pub struct Stats1d {
     pub rms_out_ad: f64,
     /// Switch times (on, off, on, off, …), s.
     pub switches: Vec<f64>,
-    /// Per switch, per run: first detection after the switch (before the next one)
-    /// minus the switch time, s; `None` when missed.
-    pub delays: Vec<Vec<Option<f64>>>,
+    /// Per switch: the runs' first detection after the switch (before the next one)
+    /// minus the switch time, counted per plot (and the runs that missed it).
+    pub delays: Vec<DelayCounts>,
     /// Detections at or before the first switch, summed over runs (all detections when
     /// there is no window).
     pub false_alarms: usize,
@@ -284,50 +287,96 @@ pub struct Stats1d {
     pub rms_per_time: Vec<(f64, f64)>,
 }
 
-impl Stats1d {
-    /// Reduces outcomes of the same configuration.
+/// [`Stats1d`] accumulated one run at a time, in run order: pooled and per-plot sums of
+/// the squared errors, and the detection delays as counts per plot — never a run's
+/// series, so that reducing any number of runs holds the same numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stats1dSums {
+    cfg: Maneuver1dConfig,
+    windows: Vec<(f64, f64)>,
+    switches: Vec<f64>,
+    runs: usize,
+    /// `(in_kf, in_ad, out_kf, out_ad)` Σ squared errors, and the plots inside / outside.
+    pooled: [f64; 4],
+    n_in: usize,
+    n_out: usize,
+    per_time: Vec<(f64, f64)>,
+    delays: Vec<DelayCounts>,
+    false_alarms: usize,
+}
+
+impl Stats1dSums {
+    /// No run yet, for runs of `cfg` with maneuver `windows`.
     #[must_use]
-    pub fn from_outcomes(
-        cfg: &Maneuver1dConfig,
-        windows: &[(f64, f64)],
-        outcomes: &[Outcome1d],
-    ) -> Self {
+    pub fn new(cfg: &Maneuver1dConfig, windows: &[(f64, f64)]) -> Self {
         let switches: Vec<f64> = windows.iter().flat_map(|&(on, off)| [on, off]).collect();
-        let (mut in_kf, mut in_ad, mut out_kf, mut out_ad, mut n_in, mut n_out) =
-            (0.0, 0.0, 0.0, 0.0, 0usize, 0usize);
-        let mut per_time = vec![(0.0, 0.0); cfg.steps];
-        let mut delays = vec![Vec::with_capacity(outcomes.len()); switches.len()];
-        let mut false_alarms = 0;
-        let first = switches.first().copied().unwrap_or(f64::INFINITY);
-        for o in outcomes {
-            for (k, (ek, ea)) in o.kf_err.iter().zip(&o.ad_err).enumerate() {
-                if inside(windows, cfg.time(k)) {
-                    in_kf += ek * ek;
-                    in_ad += ea * ea;
-                    n_in += 1;
-                } else {
-                    out_kf += ek * ek;
-                    out_ad += ea * ea;
-                    n_out += 1;
-                }
-                if let Some(p) = per_time.get_mut(k) {
-                    p.0 += ek * ek;
-                    p.1 += ea * ea;
-                }
+        Self {
+            cfg: *cfg,
+            windows: windows.to_vec(),
+            delays: switches
+                .iter()
+                .map(|&s| DelayCounts::new(s, (0..cfg.steps).map(|k| cfg.time(k))))
+                .collect(),
+            switches,
+            runs: 0,
+            pooled: [0.0; 4],
+            n_in: 0,
+            n_out: 0,
+            per_time: vec![(0.0, 0.0); cfg.steps],
+            false_alarms: 0,
+        }
+    }
+
+    /// Adds the next run's outcome.
+    pub fn add(&mut self, o: &Outcome1d) {
+        let cfg = &self.cfg;
+        self.runs += 1;
+        for (k, (ek, ea)) in o.kf_err.iter().zip(&o.ad_err).enumerate() {
+            if inside(&self.windows, cfg.time(k)) {
+                self.pooled[0] += ek * ek;
+                self.pooled[1] += ea * ea;
+                self.n_in += 1;
+            } else {
+                self.pooled[2] += ek * ek;
+                self.pooled[3] += ea * ea;
+                self.n_out += 1;
             }
-            let times: Vec<f64> = o.detections.iter().map(|&k| cfg.time(k)).collect();
-            false_alarms += times.iter().filter(|&&t| t <= first + 1e-9).count();
-            for (i, &s) in switches.iter().enumerate() {
-                let next = switches.get(i + 1).copied().unwrap_or(f64::INFINITY);
-                let d = times
-                    .iter()
-                    .find(|&&t| t > s + 1e-9 && t <= next + 1e-9)
-                    .map(|t| t - s);
-                if let Some(v) = delays.get_mut(i) {
-                    v.push(d);
-                }
+            if let Some(p) = self.per_time.get_mut(k) {
+                p.0 += ek * ek;
+                p.1 += ea * ea;
             }
         }
+        let first = self.switches.first().copied().unwrap_or(f64::INFINITY);
+        self.false_alarms += o
+            .detections
+            .iter()
+            .filter(|&&k| cfg.time(k) <= first + 1e-9)
+            .count();
+        for (i, &s) in self.switches.iter().enumerate() {
+            let next = self.switches.get(i + 1).copied().unwrap_or(f64::INFINITY);
+            let k = o.detections.iter().copied().find(|&k| {
+                let t = cfg.time(k);
+                t > s + 1e-9 && t <= next + 1e-9
+            });
+            if let Some(d) = self.delays.get_mut(i) {
+                d.add(k);
+            }
+        }
+    }
+
+    /// How many numbers the sums hold (per plot and switch, whatever the runs).
+    #[must_use]
+    pub fn retained(&self) -> usize {
+        2 * self.windows.len()
+            + self.switches.len()
+            + 8
+            + 2 * self.per_time.len()
+            + self.delays.iter().map(DelayCounts::retained).sum::<usize>()
+    }
+
+    /// The statistics of the runs added.
+    #[must_use]
+    pub fn finish(&self) -> Stats1d {
         let rms = |s: f64, n: usize| {
             if n == 0 {
                 f64::NAN
@@ -335,87 +384,86 @@ impl Stats1d {
                 (s / n as f64).sqrt()
             }
         };
-        let m = outcomes.len();
-        Self {
+        let m = self.runs;
+        Stats1d {
             runs: m,
-            rms_in_kf: rms(in_kf, n_in),
-            rms_in_ad: rms(in_ad, n_in),
-            rms_out_kf: rms(out_kf, n_out),
-            rms_out_ad: rms(out_ad, n_out),
-            switches,
-            delays,
-            false_alarms,
-            rms_per_time: per_time
+            rms_in_kf: rms(self.pooled[0], self.n_in),
+            rms_in_ad: rms(self.pooled[1], self.n_in),
+            rms_out_kf: rms(self.pooled[2], self.n_out),
+            rms_out_ad: rms(self.pooled[3], self.n_out),
+            switches: self.switches.clone(),
+            delays: self.delays.clone(),
+            false_alarms: self.false_alarms,
+            rms_per_time: self
+                .per_time
                 .iter()
                 .map(|&(a, b)| (rms(a, m), rms(b, m)))
                 .collect(),
         }
     }
+}
 
-    /// The delays of switch `i` that were detected, sorted, s.
+impl Stats1d {
+    /// Reduces outcomes of the same configuration: a fold through [`Stats1dSums`].
     #[must_use]
-    pub fn detected_delays(&self, i: usize) -> Vec<f64> {
-        let mut d: Vec<f64> = self
-            .delays
-            .get(i)
-            .map(|v| v.iter().flatten().copied().collect())
-            .unwrap_or_default();
-        d.sort_by(f64::total_cmp);
-        d
+    pub fn from_outcomes(
+        cfg: &Maneuver1dConfig,
+        windows: &[(f64, f64)],
+        outcomes: &[Outcome1d],
+    ) -> Self {
+        let mut sums = Stats1dSums::new(cfg, windows);
+        for o in outcomes {
+            sums.add(o);
+        }
+        sums.finish()
+    }
+
+    /// The nearest-rank `p`-quantile of switch `i`'s detected delays, s (NaN when none
+    /// was detected).
+    #[must_use]
+    pub fn detected_quantile(&self, i: usize, p: f64) -> f64 {
+        self.delays.get(i).map_or(f64::NAN, |d| d.quantile(p))
     }
 
     /// Runs in which switch `i` was missed.
     #[must_use]
     pub fn missed(&self, i: usize) -> usize {
-        self.delays
-            .get(i)
-            .map_or(0, |v| v.iter().filter(|d| d.is_none()).count())
+        self.delays.get(i).map_or(0, DelayCounts::missed)
     }
 
     /// Over all switches and runs: the fraction detected within `limit` seconds
     /// (a missed switch counts as not within).
     #[must_use]
     pub fn fraction_within(&self, limit: f64) -> f64 {
-        let all: Vec<&Option<f64>> = self.delays.iter().flatten().collect();
-        let hit = all
-            .iter()
-            .filter(|d| d.is_some_and(|d| d <= limit + 1e-9))
-            .count();
-        hit as f64 / all.len().max(1) as f64
+        let all: usize = self.delays.iter().map(DelayCounts::runs).sum();
+        let hit: usize = self.delays.iter().map(|d| d.within(limit)).sum();
+        hit as f64 / all.max(1) as f64
     }
 
     /// The mean of switch `i`'s detected delays, s (NaN when none was detected). A missed
     /// switch is not in the mean: see [`Stats1d::missed`] and [`Stats1d::delay_p95`].
     #[must_use]
     pub fn delay_mean(&self, i: usize) -> f64 {
-        let d = self.detected_delays(i);
-        if d.is_empty() {
-            f64::NAN
-        } else {
-            d.iter().sum::<f64>() / d.len() as f64
-        }
+        self.delays.get(i).map_or(f64::NAN, DelayCounts::mean)
     }
 
     /// The 95th percentile (nearest rank) of switch `i`'s delay over all runs, a missed
     /// switch counting as never detected: `+∞` when more than 5 % of the runs missed it.
     #[must_use]
     pub fn delay_p95(&self, i: usize) -> f64 {
-        let mut d: Vec<f64> = self
-            .delays
+        self.delays
             .get(i)
-            .map(|v| v.iter().map(|d| d.unwrap_or(f64::INFINITY)).collect())
-            .unwrap_or_default();
-        d.sort_by(f64::total_cmp);
-        quantile(&d, 0.95)
+            .map_or(f64::NAN, |d| d.quantile_with_missed(0.95))
     }
 
     /// The `p`-quantile (nearest rank, `0 ≤ p ≤ 1`) of the detected delays pooled over
     /// switches, s (NaN when nothing was detected).
     #[must_use]
     pub fn delay_quantile(&self, p: f64) -> f64 {
-        let mut d: Vec<f64> = self.delays.iter().flatten().flatten().copied().collect();
-        d.sort_by(f64::total_cmp);
-        quantile(&d, p)
+        let mut all: Vec<(f64, usize)> =
+            self.delays.iter().flat_map(DelayCounts::detected).collect();
+        all.sort_by(|a, b| a.0.total_cmp(&b.0));
+        nearest_rank(all.into_iter(), p)
     }
 }
 

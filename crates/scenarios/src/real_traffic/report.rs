@@ -1,33 +1,24 @@
 //! The `real-traffic` report: each configuration's score against the ADS-B truth
 //! (means over the runs), completeness and GOSPA over time, and the map.
 
-use super::setup::{ConfigScore, EXTENSION, RealRun, Setup};
+use super::setup::{EXTENSION, Setup};
+use super::sums::{RealSums, mean};
 use crate::error::ScenarioError;
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
 
-/// Mean of the present values (`None` when none is).
-fn mean(values: impl Iterator<Item = Option<f64>>) -> Option<f64> {
-    let (mut sum, mut n) = (0.0, 0usize);
-    for v in values.flatten() {
-        sum += v;
-        n += 1;
-    }
-    (n > 0).then(|| sum / n as f64)
-}
-
-/// The report of `runs` (in run order).
+/// The report of the runs summed in `sums`.
 ///
 /// # Errors
 /// [`ScenarioError::Degenerate`] for no run or a record without a configuration.
-pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioError> {
+pub(super) fn reduce(s: &Setup, sums: &RealSums) -> Result<Report, ScenarioError> {
     let degenerate = |message: String| ScenarioError::Degenerate {
         scenario: "real-traffic",
         message,
     };
-    if runs.is_empty() {
+    if sums.runs == 0 {
         return Err(degenerate("no runs".into()));
     }
-    let n = runs.len() as f64;
+    let n = sums.runs as f64;
     let mut rows = vec![
         Row::new(
             "aircraft",
@@ -51,39 +42,30 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             s.truth.len() as f64,
             "-",
         ),
-        Row::new(
-            "plots",
-            "plots per run",
-            runs.iter().map(|r| r.plots as f64).sum::<f64>() / n,
-            "-",
-        ),
+        Row::new("plots", "plots per run", sums.plots / n, "-"),
         Row::new(
             "target_plots",
             "aircraft plots per run",
-            runs.iter().map(|r| r.target_plots as f64).sum::<f64>() / n,
+            sums.target_plots / n,
             "-",
         ),
     ];
     let mut completeness_lines = Vec::new();
     let mut gospa_lines = Vec::new();
     let mut columns = vec!["t".to_owned()];
-    let grid: Vec<f64> = runs[0]
-        .configs
-        .first()
-        .map(|c| c.series.iter().map(|g| g.0).collect())
-        .unwrap_or_default();
+    let grid = &sums.grid;
     let mut series_rows: Vec<Vec<f64>> = grid.iter().map(|&t| vec![t]).collect();
     for (i, named) in s.trackers.iter().enumerate() {
-        let cfg: Vec<&ConfigScore> = runs.iter().filter_map(|r| r.configs.get(i)).collect();
-        if cfg.len() != runs.len() {
+        let Some(cfg) = sums.configs.get(i).filter(|c| c.complete) else {
             return Err(degenerate(format!(
                 "a run record lacks configuration {}",
                 named.name
             )));
-        }
+        };
         let key = named.name;
-        let opt = |f: &dyn Fn(&ConfigScore) -> Option<f64>| mean(cfg.iter().map(|c| f(c)));
-        let val = |f: &dyn Fn(&ConfigScore) -> f64| cfg.iter().map(|c| f(c)).sum::<f64>() / n;
+        // The indices of `sums::optional` and `sums::plain`.
+        let opt = |j: usize| mean(cfg.optional[j]);
+        let val = |j: usize| cfg.plain[j] / n;
         let push = |rows: &mut Vec<Row>,
                     what: &str,
                     quantity: &str,
@@ -106,7 +88,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "completeness",
             "completeness",
-            opt(&|c| c.completeness),
+            opt(0),
             "-",
             "≥ 0.985 (issue 18)",
         );
@@ -114,7 +96,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "breaks_per_aircraft_hour",
             "track breaks per aircraft-hour",
-            opt(&|c| c.breaks_per_aircraft_hour),
+            opt(1),
             "1/h",
             "≤ 0.1",
         );
@@ -122,7 +104,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "id_swaps",
             "identity swaps",
-            Some(val(&|c| c.id_swaps as f64)),
+            Some(val(0)),
             "-",
             "reported",
         );
@@ -130,7 +112,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "spurious_fraction",
             "spurious confirmed-track time",
-            opt(&|c| c.spurious_fraction),
+            opt(2),
             "-",
             "≤ 0.005",
         );
@@ -138,7 +120,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "false_tracks_per_step",
             "false confirmed tracks per grid step",
-            Some(val(&|c| c.false_tracks_per_step)),
+            Some(val(1)),
             "-",
             "",
         );
@@ -146,7 +128,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "position_rmse",
             "position RMSE",
-            opt(&|c| c.position_rmse),
+            opt(3),
             "m",
             "≤ 90",
         );
@@ -154,7 +136,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "velocity_rmse",
             "velocity RMSE",
-            opt(&|c| c.velocity_rmse),
+            opt(4),
             "m/s",
             "≤ 10",
         );
@@ -162,7 +144,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "position_p95",
             "95th-percentile position error",
-            opt(&|c| c.position_p95),
+            opt(5),
             "m",
             "",
         );
@@ -170,7 +152,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "time_to_confirm",
             "mean time to confirm",
-            opt(&|c| c.time_to_confirm_mean),
+            opt(6),
             "s",
             "",
         );
@@ -178,7 +160,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "never_tracked",
             "truths never tracked",
-            Some(val(&|c| c.truths_never_tracked as f64)),
+            Some(val(2)),
             "-",
             "",
         );
@@ -186,23 +168,16 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "confirmed_tracks",
             "confirmed tracks",
-            Some(val(&|c| c.confirmed_tracks as f64)),
+            Some(val(3)),
             "-",
             "",
         );
-        push(
-            &mut rows,
-            "gospa",
-            "mean GOSPA",
-            Some(val(&|c| c.gospa_mean)),
-            "m",
-            "",
-        );
+        push(&mut rows, "gospa", "mean GOSPA", Some(val(4)), "m", "");
         push(
             &mut rows,
             "gospa_missed",
             "mean GOSPA missed part",
-            Some(val(&|c| c.gospa_missed_mean)),
+            Some(val(5)),
             "m²",
             "",
         );
@@ -210,7 +185,7 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "gospa_false",
             "mean GOSPA false part",
-            Some(val(&|c| c.gospa_false_mean)),
+            Some(val(6)),
             "m²",
             "",
         );
@@ -218,13 +193,12 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             &mut rows,
             "spurious_fraction_truth_extended",
             &format!("spurious time, each truth extended {EXTENSION} s past its end"),
-            opt(&|c| c.spurious_fraction_extended),
+            opt(7),
             "-",
             "diagnostic",
         );
         // Issue 19: the same tracks RTS-smoothed (Kalman-filter trackers only).
-        let smoothed = opt(&|c| c.smoothed_position_rmse);
-        if let (Some(sm), Some(f)) = (smoothed, opt(&|c| c.position_rmse)) {
+        if let (Some(sm), Some(f)) = (opt(8), opt(3)) {
             rows.push(
                 Row::new(
                     format!("{key}_smooth_rms_ratio"),
@@ -239,9 +213,9 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             );
         }
         // Issue 18: NEES of [x, vx, y, vy] against the RTS-smoothed ADS-B truth.
-        let count: usize = cfg.iter().map(|c| c.nees_count).sum();
+        let count = cfg.nees_count;
         if count > 0 {
-            let anees = cfg.iter().map(|c| c.nees_sum).sum::<f64>() / count as f64;
+            let anees = cfg.nees_sum / count as f64;
             let band = argus_core_math::anees_interval(4, count, 0.99)
                 .map_err(|e| degenerate(format!("NEES band: {e}")))?;
             rows.push(
@@ -263,12 +237,12 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
         let mut comp = Vec::with_capacity(grid.len());
         let mut gos = Vec::with_capacity(grid.len());
         for (k, (&t, row)) in grid.iter().zip(series_rows.iter_mut()).enumerate() {
-            let c = mean(cfg.iter().map(|c| c.series.get(k).and_then(|g| g.1))).unwrap_or(f64::NAN);
-            let g = cfg
-                .iter()
-                .map(|c| c.series.get(k).map_or(f64::NAN, |g| g.2))
-                .sum::<f64>()
-                / n;
+            let c = cfg
+                .completeness
+                .get(k)
+                .and_then(|p| mean(*p))
+                .unwrap_or(f64::NAN);
+            let g = cfg.gospa.get(k).copied().unwrap_or(f64::NAN) / n;
             row.push(c);
             row.push(g);
             comp.push((t, c));
@@ -307,12 +281,12 @@ pub(super) fn reduce(s: &Setup, runs: &[RealRun]) -> Result<Report, ScenarioErro
             },
             Line {
                 label: "plots, first minute".into(),
-                points: runs[0].map_plots.iter().copied().map(km).collect(),
+                points: sums.map_plots.iter().copied().map(km).collect(),
                 style: LineStyle::Points,
             },
             Line {
                 label: "confirmed tracks (every 20 s)".into(),
-                points: runs[0].map_tracks.iter().copied().map(km).collect(),
+                points: sums.map_tracks.iter().copied().map(km).collect(),
                 style: LineStyle::Points,
             },
         ],

@@ -3,24 +3,25 @@
 
 use std::f64::consts::PI;
 
-use super::setup::{CONFIGS, ConfigRun, ScanScore, ScoreOf, Setup, SurvRun};
+use super::setup::{CONFIGS, Setup};
+use super::sums::{FIELDS, SurvSums};
 use crate::error::{ParamProblem, ScenarioError};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
 
-/// The report of the runs `runs` of the campaign `s`.
+/// The report of the runs summed in `sums` of the campaign `s`.
 ///
 /// # Errors
 /// [`ScenarioError::Degenerate`] for no run or a record without a configuration,
 /// [`ScenarioError::Param`] for a warm-up that leaves no scan.
 #[allow(clippy::too_many_lines)]
-pub(super) fn reduce(s: &Setup, runs: &[SurvRun]) -> Result<Report, ScenarioError> {
-    if runs.is_empty() {
+pub(super) fn reduce(s: &Setup, sums: &SurvSums) -> Result<Report, ScenarioError> {
+    if sums.runs == 0 {
         return Err(ScenarioError::Degenerate {
             scenario: "surveillance",
             message: "no runs".into(),
         });
     }
-    let n_runs = runs.len() as f64;
+    let n_runs = sums.runs as f64;
     let (c, p) = (s.ospa.cutoff(), s.ospa.order());
     // GOSPA with no track at all: every one of the n truths is missed at c^p/2
     // (Rahmathullah et al. 2017, α = 2), so d^p = n c^p / 2 and d = c (n/2)^{1/p}.
@@ -46,35 +47,20 @@ pub(super) fn reduce(s: &Setup, runs: &[SurvRun]) -> Result<Report, ScenarioErro
     let mut gospa_lines = Vec::new();
     let mut count_lines = Vec::new();
     for (i, (key, label)) in CONFIGS.iter().enumerate() {
-        let cfg: Vec<&ConfigRun> = runs.iter().filter_map(|r| r.configs.get(i)).collect();
-        if cfg.len() != runs.len() {
+        let Some(cfg) = sums.configs.get(i).filter(|c| c.complete) else {
             return Err(ScenarioError::Degenerate {
                 scenario: "surveillance",
                 message: format!("a run record lacks configuration {key}"),
             });
-        }
-        let score = |k: usize, f: &dyn Fn(&ScanScore) -> f64| -> f64 {
-            cfg.iter()
-                .map(|r| r.scans.get(k).map_or(0.0, f))
-                .sum::<f64>()
-                / n_runs
         };
-        let fields: [(&str, &ScoreOf<'_>); 8] = [
-            ("ospa", &|x| x.ospa),
-            ("gospa", &|x| x.gospa),
-            ("gospa_loc", &|x| x.loc),
-            ("gospa_missed", &|x| x.missed as f64 * 0.5 * c.powf(p)),
-            ("gospa_false", &|x| x.false_tracks as f64 * 0.5 * c.powf(p)),
-            ("missed", &|x| x.missed as f64),
-            ("false", &|x| x.false_tracks as f64),
-            ("breaks", &|x| x.breaks as f64),
-        ];
-        let mut means = Vec::with_capacity(fields.len());
-        for (name, f) in &fields {
+        let score =
+            |k: usize, j: usize| -> f64 { cfg.per_scan.get(k).map_or(0.0, |v| v[j]) / n_runs };
+        let mut means = Vec::with_capacity(FIELDS.len());
+        for (j, name) in FIELDS.iter().enumerate() {
             columns.push(format!("{key}_{name}"));
             let mut sum_after = 0.0;
             for (k, row) in per_scan.iter_mut().enumerate() {
-                let v = score(k, *f);
+                let v = score(k, j);
                 row.push(v);
                 if s.time(k) >= s.warmup {
                     sum_after += v;
@@ -84,10 +70,10 @@ pub(super) fn reduce(s: &Setup, runs: &[SurvRun]) -> Result<Report, ScenarioErro
         }
         columns.push(format!("{key}_confirmed"));
         for (k, row) in per_scan.iter_mut().enumerate() {
-            row.push(score(k, &|x| x.confirmed as f64));
+            row.push(score(k, FIELDS.len()));
         }
         let col = |j: usize| -> Vec<(f64, f64)> {
-            let idx = 1 + i * (fields.len() + 1) + j;
+            let idx = 1 + i * (FIELDS.len() + 1) + j;
             per_scan
                 .iter()
                 .map(|r| (r[0], r.get(idx).copied().unwrap_or(0.0)))
@@ -114,35 +100,20 @@ pub(super) fn reduce(s: &Setup, runs: &[SurvRun]) -> Result<Report, ScenarioErro
             style: LineStyle::Points,
         });
         // Localisation per assigned target, pooled over runs and scans after warm-up.
-        let (loc_sum, assigned): (f64, usize) = cfg
-            .iter()
-            .flat_map(|r| after.iter().filter_map(|&k| r.scans.get(k)))
-            .fold((0.0, 0), |(l, a), x| (l + x.loc, a + x.assigned));
+        let (loc_sum, assigned) = (cfg.loc_sum, cfg.assigned);
         let loc_mean = if assigned > 0 {
             (loc_sum / assigned as f64).powf(1.0 / p)
         } else {
             0.0
         };
-        let ttc: Vec<f64> = cfg
-            .iter()
-            .flat_map(|r| r.time_to_confirm.iter().flatten().copied())
-            .collect();
-        let never: usize = cfg
-            .iter()
-            .map(|r| r.time_to_confirm.iter().filter(|x| x.is_none()).count())
-            .sum();
-        let ttc_mean = if ttc.is_empty() {
+        let never = cfg.never;
+        let ttc_mean = if cfg.ttc_count == 0 {
             0.0
         } else {
-            ttc.iter().sum::<f64>() / ttc.len() as f64
+            cfg.ttc_sum / cfg.ttc_count as f64
         };
-        let per_run =
-            |f: &dyn Fn(&ConfigRun) -> f64| cfg.iter().map(|r| f(r)).sum::<f64>() / n_runs;
-        let after_note = format!(
-            "mean over {} runs × scans at t ≥ {} s",
-            runs.len(),
-            s.warmup
-        );
+        let per_run = |sum: f64| sum / n_runs;
+        let after_note = format!("mean over {} runs × scans at t ≥ {} s", sums.runs, s.warmup);
         rows.extend([
             Row::new(
                 format!("{key}_gospa"),
@@ -185,31 +156,31 @@ pub(super) fn reduce(s: &Setup, runs: &[SurvRun]) -> Result<Report, ScenarioErro
             Row::new(
                 format!("{key}_false_track_rate"),
                 format!("{label}: false-track rate"),
-                per_run(&|r| r.false_tracks_per_scan),
+                per_run(cfg.false_rate),
                 "1/scan",
             )
             .note("confirmed tracks assigned to no truth, per scan, whole run"),
             Row::new(
                 format!("{key}_false_track_ids"),
                 format!("{label}: false tracks per run"),
-                per_run(&|r| r.false_track_ids as f64),
+                per_run(cfg.false_ids),
                 "-",
             )
             .note(format!(
                 "distinct confirmed tracks never assigned; of {:.1} tracks seen",
-                per_run(&|r| r.tracks_seen as f64)
+                per_run(cfg.seen)
             )),
             Row::new(
                 format!("{key}_breaks"),
                 format!("{label}: track breaks per run"),
-                per_run(&|r| r.breaks as f64),
+                per_run(cfg.breaks),
                 "-",
             )
             .note(format!("{} targets, {} scans", s.targets, s.scans)),
             Row::new(
                 format!("{key}_id_swaps"),
                 format!("{label}: id swaps per run"),
-                per_run(&|r| r.id_swaps as f64),
+                per_run(cfg.id_swaps),
                 "-",
             ),
             Row::new(
@@ -228,8 +199,7 @@ pub(super) fn reduce(s: &Setup, runs: &[SurvRun]) -> Result<Report, ScenarioErro
         name: name.into(),
         title: format!(
             "surveillance: {title} ({} runs, {} targets)",
-            runs.len(),
-            s.targets
+            sums.runs, s.targets
         ),
         x_label: "time (s)".into(),
         y_label: y.into(),

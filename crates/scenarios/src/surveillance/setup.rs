@@ -77,9 +77,6 @@ pub(crate) struct ScanScore {
     pub(super) breaks: usize,
 }
 
-/// Reads one number from a scan's scores.
-pub(super) type ScoreOf<'a> = dyn Fn(&ScanScore) -> f64 + 'a;
-
 /// One configuration's results in one run.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub(crate) struct ConfigRun {
