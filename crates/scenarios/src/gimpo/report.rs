@@ -14,12 +14,6 @@ pub(super) const WARMUP: f64 = 0.25;
 const REFERENCE_RATIO: [f64; 5] = [0.98, 1.01, 1.03, 1.05, 1.07];
 
 /// Mean and sample standard deviation.
-fn mean_sd_last(vals: &[f64]) -> (f64, f64) {
-    let m = vals.iter().sum::<f64>() / vals.len().max(1) as f64;
-    let v = vals.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (vals.len().max(2) - 1) as f64;
-    (m, v.sqrt())
-}
-
 /// The per-step means the series and figures show.
 struct Means {
     mu: Vec<[f64; 3]>,
@@ -123,7 +117,7 @@ fn rows(p: &Params, clip: Option<f64>, st: &Sums) -> Result<Vec<Row>, ScenarioEr
         ),
     ));
     for (i, f) in STARTS.iter().enumerate() {
-        let (m, sd) = mean_sd_last(&st.last_multi[i]);
+        let (m, sd) = st.last_multi[i].mean_sd();
         rows.push(row(
             format!("ratio_multi_{f}"),
             format!("multi-IMM final R ratio from {f}"),
@@ -150,8 +144,8 @@ fn rows(p: &Params, clip: Option<f64>, st: &Sums) -> Result<Vec<Row>, ScenarioEr
         ));
     }
     for (i, f) in STARTS.iter().enumerate() {
-        let (mr, sdr) = mean_sd_last(&st.last_vb[i][0]);
-        let (ma, sda) = mean_sd_last(&st.last_vb[i][1]);
+        let (mr, sdr) = st.last_vb[i][0].mean_sd();
+        let (ma, sda) = st.last_vb[i][1].mean_sd();
         let dynr = Sums::rms(st.tail_vb[i]);
         rows.push(row(
             format!("ratio_vb_range_{f}"),
@@ -182,8 +176,8 @@ fn rows(p: &Params, clip: Option<f64>, st: &Sums) -> Result<Vec<Row>, ScenarioEr
         ));
     }
     for (i, f) in STARTS.iter().enumerate() {
-        let (mr, sdr) = mean_sd_last(&st.last_ev[i][0]);
-        let (ma, sda) = mean_sd_last(&st.last_ev[i][1]);
+        let (mr, sdr) = st.last_ev[i][0].mean_sd();
+        let (ma, sda) = st.last_ev[i][1].mean_sd();
         let dynr = Sums::rms(st.tail_ev[i]);
         for (axis, sym, m, sd) in [("range", "σr²", mr, sdr), ("azimuth", "σθ²", ma, sda)] {
             rows.push(row(
@@ -207,8 +201,8 @@ fn rows(p: &Params, clip: Option<f64>, st: &Sums) -> Result<Vec<Row>, ScenarioEr
         ));
     }
     for (i, f) in STARTS.iter().enumerate() {
-        let (mr, sdr) = mean_sd_last(&st.last_df[i][0]);
-        let (ma, sda) = mean_sd_last(&st.last_df[i][1]);
+        let (mr, sdr) = st.last_df[i][0].mean_sd();
+        let (ma, sda) = st.last_df[i][1].mean_sd();
         let dynr = Sums::rms(st.tail_df[i]);
         for (axis, sym, m, sd) in [("range", "σr²", mr, sdr), ("azimuth", "σθ²", ma, sda)] {
             rows.push(row(
