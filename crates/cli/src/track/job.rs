@@ -26,6 +26,8 @@ pub(super) enum Job {
 #[derive(Debug, Clone)]
 pub(super) struct Loaded {
     pub(super) job: Job,
+    /// The checked sensors (for an ASTERIX plot file's SAC/SIC).
+    pub(super) sensors: Vec<Sensor>,
     pub(super) reference: Option<Reference>,
 }
 
@@ -51,11 +53,16 @@ pub(super) fn load_all(path: &Path) -> Result<Loaded, CliError> {
     let reference = geo::reference(src, file.reference.as_ref())?;
     let sensors = spec::sensors(src, &file.sensors, reference.as_ref())?;
     let estimator = spec::estimator(src, &file.estimator)?;
+    let all = sensors.clone();
     let job = match &file.tracker {
         None => Job::Single { sensors, estimator },
         Some(table) => Job::Multi(tracker_config::build(
             src, &file, table, &sensors, &estimator,
         )?),
     };
-    Ok(Loaded { job, reference })
+    Ok(Loaded {
+        job,
+        sensors: all,
+        reference,
+    })
 }

@@ -20,6 +20,7 @@ mod single;
 mod single_aircraft;
 mod single_imm;
 mod smooth;
+mod source;
 mod spec;
 mod start;
 mod stream;
@@ -34,9 +35,9 @@ pub use stream::TrackStream;
 
 use crate::error::CliError;
 use crate::output::write_atomic;
-use crate::plotfile;
 
-/// Runs `argus track`: the configuration at `config` over the plot file `plots_path`,
+/// Runs `argus track`: the configuration at `config` over the plot file `plots_path`
+/// (CSV, or ASTERIX by content: [`source`]),
 /// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`),
 /// with the smoothed columns when `smoothing` is given. Returns the number of rows written
 /// and the summary's path (multi-target only).
@@ -52,7 +53,8 @@ pub fn run(
 ) -> Result<(usize, Option<PathBuf>), CliError> {
     let loaded = job::load_all(config)?;
     let reference = loaded.reference.as_ref();
-    let plots = plotfile::read(plots_path)?;
+    let source = source::read(plots_path, config, &loaded.sensors)?;
+    let plots = source.plots;
     match loaded.job {
         job::Job::Single { sensors, estimator } => {
             let ctx = start::Ctx {
@@ -67,13 +69,15 @@ pub fn run(
             write_atomic(out, rows.into_text().as_bytes())?;
             Ok((n, None))
         }
-        job::Job::Multi(m) => {
+        job::Job::Multi(mut m) => {
+            multi::set_rotations(&mut m, &source.rotations);
             let files = multi::Files {
                 config,
                 plots: plots_path,
                 out,
                 reference,
                 smoothing,
+                markers: &source.markers,
             };
             let (n, summary) = multi::run(&m, &files, &plots)?;
             Ok((n, Some(summary)))

@@ -32,6 +32,24 @@ pub(super) struct Files<'a> {
     pub(super) reference: Option<&'a Reference>,
     /// `--smooth` / `--smooth-lag` ([`super::multi_smooth`]).
     pub(super) smoothing: Option<Smoothing>,
+    /// Times the tracker advances to with no plot (an ASTERIX file's CAT034 messages,
+    /// [`super::source`]), in order.
+    pub(super) markers: &'a [f64],
+}
+
+/// Gives the sensors the rotations an ASTERIX file's CAT034 messages state (the
+/// configured direction kept).
+pub(super) fn set_rotations(m: &mut MultiTarget, rotations: &[super::source::MessageRotation]) {
+    for r in rotations {
+        if let Some(s) = m.config.sensors.iter_mut().find(|s| s.id.0 == r.sensor) {
+            let direction = s.rotation.map(|x| x.direction).unwrap_or_default();
+            s.rotation = Some(
+                argus_tracker::Rotation::clockwise(r.period)
+                    .with_direction(direction)
+                    .with_north_time(r.north_time),
+            );
+        }
+    }
 }
 
 /// The tracks CSV's columns for a configuration: the IMMs add the mode probabilities,
@@ -240,12 +258,9 @@ fn run_stream(
     converted: &[Plot],
 ) -> Result<(), CliError> {
     let mut start = 0;
-    while start < converted.len() {
-        let (t, s) = (converted[start].time(), converted[start].sensor());
-        let len = converted[start..]
-            .iter()
-            .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
-            .count();
+    let mut markers = files.markers.iter().copied().peekable();
+    // Steps sector by sector up to `t`, then to `t` itself when it is a marker.
+    let advance = |tracker: &mut Tracker, tally: &mut Tally<'_>, t: f64, marker: bool, start| {
         while let Some(end) = tracker.next_sector_end()
             && end <= t
         {
@@ -256,6 +271,26 @@ fn run_stream(
                 tally.record(tracker, r);
             }
         }
+        if marker {
+            let reports = tracker
+                .advance_to(t)
+                .map_err(|e| plot_error(files, plots, start, e))?;
+            for r in &reports {
+                tally.record(tracker, r);
+            }
+        }
+        Ok::<(), CliError>(())
+    };
+    while start < converted.len() {
+        let (t, s) = (converted[start].time(), converted[start].sensor());
+        let len = converted[start..]
+            .iter()
+            .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
+            .count();
+        while let Some(m) = markers.next_if(|m| *m <= t) {
+            advance(tracker, tally, m, true, start)?;
+        }
+        advance(tracker, tally, t, false, start)?;
         let reports = tracker
             .process(&converted[start..start + len])
             .map_err(|e| plot_error(files, plots, start, e))?;
@@ -263,6 +298,9 @@ fn run_stream(
             tally.record(tracker, r);
         }
         start += len;
+    }
+    for m in markers {
+        advance(tracker, tally, m, true, converted.len())?;
     }
     for r in &tracker.flush() {
         tally.record(tracker, r);

@@ -27,6 +27,8 @@ pub(super) struct Sensor {
     /// A rotating radar's beam (used by the multi-target tracker, whose configuration
     /// checks its values; the single-target estimators take each plot at its time).
     pub(super) rotation: Option<Rotation>,
+    /// Its ASTERIX data source (`sac`, `sic`; default `256 · SAC + SIC = id`).
+    pub(super) asterix: Option<argus_asterix::DataSource>,
 }
 
 /// A checked estimator: its kind and the CV model's white-acceleration σ (m/s²), or the
@@ -138,6 +140,7 @@ pub(super) fn sensors(
             polar,
             sigma_elevation,
             rotation: rotation(src, id, s)?,
+            asterix: super::source::data_source(src, id, s)?,
         });
     }
     Ok(sensors)

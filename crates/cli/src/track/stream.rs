@@ -72,6 +72,7 @@ impl TrackStream {
             out: name,
             reference: self.reference.as_ref(),
             smoothing: None,
+            markers: &[],
         };
         let converted = plots
             .iter()
