@@ -288,3 +288,63 @@ pub(crate) fn sweep(
         sectors,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sweep(clockwise: bool) -> Sweep {
+        Sweep {
+            period: 4.0,
+            north_time: 0.0,
+            clockwise,
+            sectors: 8,
+        }
+    }
+
+    #[test]
+    fn sector_messages_name_the_sector_start_clockwise_from_north() {
+        let src = DataSource { sac: 0, sic: 1 };
+        // Boundary 0 of each revolution: a north marker with the period (4 s = 512/128).
+        let north = message(&sweep(true), 8, 4.0, src).unwrap();
+        assert_eq!(north.message_type, Some(MessageType::NorthMarker));
+        assert_eq!(north.rotation_period, Some(RotationPeriod(512)));
+        assert_eq!(north.time, Some(TimeOfDay(512)));
+        // Boundary 2 of 8: a quarter turn, 90° = 64 × 360°/256 clockwise; a
+        // counter-clockwise beam is then at 270° (192).
+        let cw = message(&sweep(true), 2, 1.0, src).unwrap();
+        assert_eq!(cw.message_type, Some(MessageType::SectorCrossing));
+        assert_eq!(cw.sector, Some(Sector(64)));
+        assert_eq!(
+            message(&sweep(false), 2, 1.0, src).unwrap().sector,
+            Some(Sector(192))
+        );
+        // A negative boundary index is the same sector of the revolution before.
+        assert_eq!(
+            message(&sweep(true), -6, -3.0 + 86_400.0, src)
+                .unwrap()
+                .sector,
+            Some(Sector(64))
+        );
+    }
+
+    #[test]
+    fn only_polar_plots_with_a_time_of_day_are_written() {
+        let polar = Plot::polar(1.0, argus_sensors::SensorId(1), 1000.0, 0.0).unwrap();
+        let enc = encode_plots(&[polar, polar], None).unwrap();
+        // One scan time: one datagram, two reports, no sweep so no CAT034.
+        assert_eq!((enc.datagrams.len(), enc.reports, enc.messages), (1, 2, 0));
+        let neg = Plot::polar(-1.0, argus_sensors::SensorId(1), 1000.0, 0.0).unwrap();
+        assert!(
+            matches!(encode_plots(&[neg], None), Err(CliError::Usage(m)) if m.contains("t ≥ 0"))
+        );
+        let far = Plot::polar(0.0, argus_sensors::SensorId(1), 500e3, 0.0).unwrap();
+        assert!(
+            matches!(encode_plots(&[far], None), Err(CliError::Usage(m)) if m.contains("I048/040"))
+        );
+        let big = Plot::polar(0.0, argus_sensors::SensorId(70_000), 1000.0, 0.0).unwrap();
+        assert!(
+            matches!(encode_plots(&[big], None), Err(CliError::Usage(m)) if m.contains("65 535"))
+        );
+    }
+}

@@ -160,3 +160,37 @@ pub(crate) fn source_of(sensor: u32) -> Option<DataSource> {
     let [sac, sic] = v.to_be_bytes();
     Some(DataSource { sac, sic })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn content_is_known_by_its_first_bytes() {
+        // A one-record CAT034 block: FSPEC 0x80 (I034/010 only), SAC 0, SIC 1.
+        let block = [34u8, 0, 6, 0x80, 0, 1];
+        assert_eq!(Content::sniff(&block), Content::Blocks);
+        // CSV, also with a quoted header (its first byte is '"', 34, CAT034's number):
+        // the LEN it would give does not decode to a record.
+        assert_eq!(Content::sniff(b"t,sensor,range,azimuth\n"), Content::Csv);
+        assert_eq!(Content::sniff(b"\"t\",\"sensor\"\n0,1\n"), Content::Csv);
+        // A block header whose LEN runs past the file, or below 3: not blocks.
+        assert_eq!(Content::sniff(&[48u8, 0, 9, 0x80]), Content::Csv);
+        assert_eq!(Content::sniff(&[48u8, 0, 2]), Content::Csv);
+        assert_eq!(
+            Content::sniff(&0xa1b2_c3d4u32.to_le_bytes()),
+            Content::Capture
+        );
+        assert_eq!(Content::sniff(&[]), Content::Csv);
+    }
+
+    #[test]
+    fn sensors_and_data_sources_map_both_ways() {
+        assert_eq!(sensor_of(DataSource { sac: 0, sic: 1 }), 1);
+        assert_eq!(sensor_of(DataSource { sac: 25, sic: 12 }), 25 * 256 + 12);
+        for id in [0, 1, 255, 256, 6412, 65_535] {
+            assert_eq!(source_of(id).map(sensor_of), Some(id));
+        }
+        assert_eq!(source_of(65_536), None);
+    }
+}
