@@ -7,11 +7,15 @@
 //!   (counter-clockwise from east, rad).
 //! - A polar plot CSV → CAT048 (+ CAT034 north markers and sector crossings with
 //!   `--revolution-period`), as a pcap capture (`.pcap`) or raw blocks (`.ast`).
+//! - CAT062 (a file without CAT048 plots) → the tracks CSV `t,track,x,vx,y,vy,status`
+//!   that `argus score` reads; a tracks CSV (a header with `track`) → CAT062 of its
+//!   confirmed rows.
 
 use std::path::Path;
 
 use crate::asterix_io::encode::{self, Container, Sweep};
 use crate::asterix_io::plots::radar_data;
+use crate::asterix_io::tracks::{encode_tracks, tracks_csv};
 use crate::asterix_io::{self, sensor_of};
 use crate::error::CliError;
 use crate::output::write_atomic;
@@ -36,11 +40,21 @@ pub(crate) fn run(
             }
             let data = radar_data(&s);
             if data.plots.is_empty() {
-                return Err(CliError::Usage(format!(
-                    "{}: no CAT048 report with I048/010, /140 and /040 ({} records; CAT062 and CAT021 are not converted yet)",
-                    input.display(),
+                let (text, rows, incomplete) = tracks_csv(&s);
+                if rows == 0 {
+                    return Err(CliError::Usage(format!(
+                        "{}: no CAT048 report with I048/010, /140 and /040 and no CAT062 track with /070, /040, /100 and /185 ({} records; CAT021 is not converted yet)",
+                        input.display(),
+                        s.records.len()
+                    )));
+                }
+                write_atomic(output, text.as_bytes())?;
+                lines.push(format!(
+                    "wrote {} ({rows} track rows from {} records; {incomplete} incomplete CAT062 records)",
+                    output.display(),
                     s.records.len()
-                )));
+                ));
+                return Ok(lines);
             }
             let mut text = String::from("t,sensor,range,azimuth\n");
             for p in &data.plots {
@@ -61,6 +75,17 @@ pub(crate) fn run(
                 data.services.len(),
                 data.incomplete,
                 data.other
+            ));
+        }
+        (None, Some(c)) if is_tracks_csv(input)? => {
+            // The system's own data source: SAC 0, SIC 0.
+            let enc = encode_tracks(input, argus_asterix::DataSource::default())?;
+            encode::write(output, &enc, c)?;
+            lines.push(format!(
+                "wrote {} ({} CAT062 records in {} datagrams)",
+                output.display(),
+                enc.reports,
+                enc.datagrams.len()
             ));
         }
         (None, Some(c)) => {
@@ -89,4 +114,13 @@ pub(crate) fn run(
         }
     }
     Ok(lines)
+}
+
+/// Whether the CSV at `path` is a tracks file: its header has a `track` column.
+fn is_tracks_csv(path: &Path) -> Result<bool, CliError> {
+    let text = std::fs::read_to_string(path).map_err(|e| CliError::io(path, e))?;
+    let header = text.lines().next().unwrap_or("");
+    Ok(header
+        .split(',')
+        .any(|c| c.trim().trim_matches('"') == "track"))
 }

@@ -139,7 +139,8 @@ enum Command {
         sectors: u32,
     },
     /// Converts between ASTERIX (pcap, pcapng or raw blocks, known by content) and the
-    /// CSV layouts (docs/FORMATS.md): CAT048 ↔ polar plot CSV.
+    /// CSV layouts (docs/FORMATS.md): CAT048 (+ CAT034) ↔ polar plot CSV, CAT062 ↔ tracks
+    /// CSV.
     Convert {
         /// Input file (format by content).
         input: PathBuf,

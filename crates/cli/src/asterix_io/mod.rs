@@ -2,7 +2,7 @@
 //! content known by its first bytes (pcap, pcapng, raw ASTERIX blocks, else CSV), the
 //! ASTERIX records of a capture's UDP payloads or of a block file ([`read`]), CAT048
 //! and CAT034 turned into plots and sector messages ([`plots`]), plots written as CAT048
-//! and CAT034 ([`encode`]).
+//! and CAT034 ([`encode`]), CAT062 system tracks to and from the tracks CSV ([`tracks`]).
 //!
 //! Sensor numbers and ASTERIX data sources map one way for every command that has no
 //! configuration: `sensor = 256 · SAC + SIC` (so sensor 1 is SAC 0, SIC 1). `argus track`
@@ -10,6 +10,7 @@
 
 pub(crate) mod encode;
 pub(crate) mod plots;
+pub(crate) mod tracks;
 
 use std::path::Path;
 
