@@ -112,9 +112,25 @@ impl Surveillance {
 /// [`CliError::Io`]; [`CliError::Capture`] for a capture whose header or link type
 /// cannot be read.
 pub(crate) fn read(path: &Path) -> Result<Option<Surveillance>, CliError> {
-    let bytes = std::fs::read(path).map_err(|e| CliError::io(path, e))?;
-    read_bytes(&bytes, path)
+    use std::io::Read as _;
+    // The content is known from the first block at most (LEN ≤ 65 535): a CSV file is
+    // not read further here, so that `argus track` still streams it.
+    let mut file = std::fs::File::open(path).map_err(|e| CliError::io(path, e))?;
+    let mut head = Vec::new();
+    (&mut file)
+        .take(SNIFF_BYTES)
+        .read_to_end(&mut head)
+        .map_err(|e| CliError::io(path, e))?;
+    if Content::sniff(&head) == Content::Csv {
+        return Ok(None);
+    }
+    file.read_to_end(&mut head)
+        .map_err(|e| CliError::io(path, e))?;
+    read_bytes(&head, path)
 }
+
+/// Bytes enough to know a file's content: one whole ASTERIX block.
+const SNIFF_BYTES: u64 = 65_536;
 
 /// [`read`] on bytes in memory; `path` names them in errors.
 ///

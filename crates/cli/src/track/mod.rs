@@ -10,6 +10,7 @@
 //! multi-target tracker ([`multi`]); both write their rows through [`rows`].
 
 mod errors;
+mod feed;
 mod geo;
 mod job;
 mod multi;
@@ -35,9 +36,10 @@ pub use stream::TrackStream;
 
 use crate::error::CliError;
 use crate::output::write_atomic;
+use crate::plotfile;
 
 /// Runs `argus track`: the configuration at `config` over the plot file `plots_path`
-/// (CSV, or ASTERIX by content: [`source`]),
+/// (CSV, or ASTERIX known by content: [`source`]),
 /// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`),
 /// with the smoothed columns when `smoothing` is given. Returns the number of rows written
 /// and the summary's path (multi-target only).
@@ -53,10 +55,14 @@ pub fn run(
 ) -> Result<(usize, Option<PathBuf>), CliError> {
     let loaded = job::load_all(config)?;
     let reference = loaded.reference.as_ref();
-    let source = source::read(plots_path, config, &loaded.sensors)?;
-    let plots = source.plots;
+    // `None` for CSV, which is then read as before (streamed for the tracker).
+    let asterix = source::read(plots_path, config, &loaded.sensors)?;
     match loaded.job {
         job::Job::Single { sensors, estimator } => {
+            let plots = match asterix {
+                Some(a) => a.plots,
+                None => plotfile::read(plots_path)?,
+            };
             let ctx = start::Ctx {
                 config,
                 plots_path,
@@ -70,16 +76,22 @@ pub fn run(
             Ok((n, None))
         }
         job::Job::Multi(mut m) => {
-            multi::set_rotations(&mut m, &source.rotations);
-            let files = multi::Files {
+            let mut files = multi::Files {
                 config,
                 plots: plots_path,
                 out,
                 reference,
                 smoothing,
-                markers: &source.markers,
+                markers: &[],
             };
-            let (n, summary) = multi::run(&m, &files, &plots)?;
+            let (n, summary) = match &asterix {
+                Some(a) => {
+                    multi::set_rotations(&mut m, &a.rotations);
+                    files.markers = &a.markers;
+                    multi::run(&m, &files, a.plots.iter().copied().map(Ok))?
+                }
+                None => multi::run(&m, &files, plotfile::PlotReader::open(plots_path)?)?,
+            };
             Ok((n, Some(summary)))
         }
     }

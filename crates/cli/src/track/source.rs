@@ -28,7 +28,7 @@ use super::spec::Sensor;
 use crate::asterix_io::plots::{radar_data, rotation_of};
 use crate::asterix_io::{self, source_of};
 use crate::error::CliError;
-use crate::plotfile::{self, FilePlot};
+use crate::plotfile::FilePlot;
 
 /// A radar's rotation read from its CAT034 messages.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -41,14 +41,14 @@ pub(super) struct MessageRotation {
     pub(super) north_time: f64,
 }
 
-/// What the plot file gives the tracker.
+/// What an ASTERIX plot file gives the tracker.
 #[derive(Debug, Clone, Default)]
 pub(super) struct PlotSource {
     /// The plots, in time order.
     pub(super) plots: Vec<FilePlot>,
-    /// CAT034 message times of the configured radars, in order (empty for CSV).
+    /// CAT034 message times of the configured radars, in order.
     pub(super) markers: Vec<f64>,
-    /// Rotations from CAT034 (empty for CSV).
+    /// Rotations from CAT034.
     pub(super) rotations: Vec<MessageRotation>,
 }
 
@@ -81,19 +81,21 @@ fn show(d: DataSource) -> String {
     format!("{}/{}", d.sac, d.sic)
 }
 
-/// Reads the plot file at `path` for the `sensors` of `config`.
+/// Reads the plot file at `path` for the `sensors` of `config` when it is ASTERIX
+/// (`None`: CSV, which the caller reads, only its first bytes read here).
 ///
 /// # Errors
 /// The CSV reader's errors; for ASTERIX, [`CliError::Capture`] for an unreadable
 /// capture, [`CliError::UnknownSource`] for a report of a radar not configured,
 /// [`CliError::Input`] for two sensors with one SAC/SIC or a plot whose values Argus
 /// refuses.
-pub(super) fn read(path: &Path, config: &Path, sensors: &[Sensor]) -> Result<PlotSource, CliError> {
+pub(super) fn read(
+    path: &Path,
+    config: &Path,
+    sensors: &[Sensor],
+) -> Result<Option<PlotSource>, CliError> {
     let Some(surveillance) = asterix_io::read(path)? else {
-        return Ok(PlotSource {
-            plots: plotfile::read(path)?,
-            ..PlotSource::default()
-        });
+        return Ok(None);
     };
     for (k, a) in sensors.iter().enumerate() {
         if let Some(b) = sensors[k + 1..]
@@ -159,9 +161,9 @@ pub(super) fn read(path: &Path, config: &Path, sensors: &[Sensor]) -> Result<Plo
             })
         })
         .collect();
-    Ok(PlotSource {
+    Ok(Some(PlotSource {
         plots,
         markers,
         rotations,
-    })
+    }))
 }
