@@ -6,11 +6,13 @@
 //! ([`argus_geo::LocalFrame`], GeographicLib's `LocalCartesian`); altitudes are heights
 //! above the WGS-84 ellipsoid.
 
-use argus_geo::{Enu, GeoError, Geodetic, LocalFrame};
+use argus_geo::{Enu, GeoError, Geodetic, LocalFrame, RadarSite};
 use toml::Spanned;
 
 use super::schema::{ReferenceTable, SensorTable, Source};
 use crate::error::CliError;
+use crate::plotfile::FilePlot;
+use argus_sensors::{Measurement, Plot, PolarMeasurement, SphericalMeasurement, wrap_angle};
 
 /// How close (m) the height of a track's `lat, lon` point is brought to the reference's
 /// altitude; with the normals of points 100 km apart about 0.9° apart, a height error
@@ -85,8 +87,12 @@ pub(super) fn reference(
 }
 
 /// A sensor's position `[east, north, up]` (m) in the reference frame from its
-/// `latitude, longitude, altitude`, or `None` when it gives none of them (then
-/// `position` is used).
+/// `latitude, longitude, altitude`, and `γ`, the angle (rad, counter-clockwise) from the
+/// reference frame's east axis to the site's own east axis
+/// ([`argus_geo::RadarSite::grid_rotation`]; ≈ Δλ sin φ, 0.5° for a site 50 km east of
+/// a reference at 49° N): the site's azimuths, measured from its own north, are turned
+/// by `γ` into the reference frame. `None` when the sensor gives none of them (then
+/// `position` is used and `γ = 0`).
 ///
 /// # Errors
 /// [`CliError::Input`] naming the line: geodetic keys together with `position`, a
@@ -96,7 +102,7 @@ pub(super) fn sensor_position(
     src: Source<'_>,
     s: &SensorTable,
     reference: Option<&Reference>,
-) -> Result<Option<[f64; 3]>, CliError> {
+) -> Result<Option<([f64; 3], f64)>, CliError> {
     let id = *s.id.get_ref();
     let (lat, lon) = match (&s.latitude, &s.longitude) {
         (None, None) => {
@@ -137,8 +143,40 @@ pub(super) fn sensor_position(
         ));
     };
     let g = geodetic(src, &format!("sensor {id}"), lat, lon, s.altitude.as_ref())?;
-    let enu = r.frame.geodetic_to_enu(&g);
-    Ok(Some([enu.east, enu.north, enu.up]))
+    let site = RadarSite::wgs84(g);
+    let enu = site.position_in(&r.frame);
+    Ok(Some((
+        [enu.east, enu.north, enu.up],
+        site.grid_rotation(&r.frame),
+    )))
+}
+
+/// `p` in the reference frame: the azimuth of a polar or spherical plot of a geodetic
+/// site turned by its `γ` (`rotations`: `(sensor, γ)`, [`sensor_position`]) and wrapped to
+/// (−π, π]; every other plot as it is.
+pub(super) fn to_reference(rotations: &[(u32, f64)], mut p: FilePlot) -> FilePlot {
+    let Some(&(_, gamma)) = rotations.iter().find(|(id, _)| *id == p.sensor()) else {
+        return p;
+    };
+    let turned = match *p.measurement() {
+        Measurement::Polar(m) => {
+            PolarMeasurement::new(m.range(), wrap_angle(m.azimuth() + gamma)).map(Measurement::from)
+        }
+        Measurement::Spherical(m) => {
+            SphericalMeasurement::new(m.range(), wrap_angle(m.azimuth() + gamma), m.elevation())
+                .map(Measurement::from)
+        }
+        Measurement::Cartesian2(_) | Measurement::Cartesian3(_) => return p,
+    };
+    // The measurement was valid and only its (wrapped) azimuth changed.
+    let q = &p.plot;
+    if let Ok(plot) = turned
+        .and_then(|m| Plot::new(q.time(), q.sensor(), m))
+        .and_then(|plot| plot.with_amplitude(q.amplitude()))
+    {
+        p.plot = plot;
+    }
+    p
 }
 
 #[cfg(test)]
@@ -179,6 +217,38 @@ mod tests {
         // 1 mm (issue 18); the point is 50 km out, 195 m below the tangent plane.
         assert!((back.east - e).hypot(back.north - n) < 1e-3);
         assert!((back.up + 195.0).abs() < 5.0, "{}", back.up);
+    }
+
+    #[test]
+    fn a_geodetic_rotating_site_points_at_its_own_north_at_its_north_time() {
+        // γ of a site 55 km east of the reference, at 49° N: ≈ Δλ sin φ = 0.566°. Its beam
+        // points at the site's north at north_time = 2 s, which is the reference frame's
+        // azimuth π/2 + γ; its plots' azimuths are turned by the same γ.
+        for (dir, sense) in [("clockwise", -1.0), ("counterclockwise", 1.0)] {
+            let text = format!(
+                "[reference]\nlatitude = 49.0\nlongitude = 2.55\n\n[[sensor]]\nid = 1\nlatitude = 49.0\nlongitude = 3.3\nsigma_range = 70.0\nsigma_azimuth_deg = 0.08\nrevolution_period = 5.0\nrotation = \"{dir}\"\nnorth_time = 2.0\n{EST}"
+            );
+            let l = load(&text).unwrap();
+            let Job::Single { sensors, .. } = &l.job else {
+                panic!("not single");
+            };
+            let gamma = sensors[0].grid_rotation;
+            // Δλ sin φ to first order; the exact value differs by O(Δλ³) (1e-6 rad here).
+            let approx = 0.75_f64.to_radians() * 49.0_f64.to_radians().sin();
+            assert!((gamma - approx).abs() < 1e-5, "{gamma} against {approx}");
+            assert_eq!(l.grid_rotations, vec![(1, gamma)]);
+            let r = sensors[0].rotation.unwrap();
+            let beam = r.beam_azimuth(2.0);
+            // Round-off of π/2 + γ through the time shift: 1e-12 rad.
+            assert!(
+                (beam - (std::f64::consts::FRAC_PI_2 + gamma)).abs() < 1e-12,
+                "{dir}: {beam}"
+            );
+            // Half a second later the beam has turned 36° in its direction.
+            let later = r.beam_azimuth(2.5);
+            let turned = sense * 36.0_f64.to_radians();
+            assert!((later - beam - turned).abs() < 1e-12, "{dir}: {later}");
+        }
     }
 
     #[test]

@@ -9,6 +9,7 @@ use super::schema::{self, Source};
 use super::spec::{self, Estimator, Sensor};
 use super::tracker_config::{self, MultiTarget};
 use crate::error::CliError;
+use crate::plotfile::FilePlot;
 
 /// A checked `argus track` job.
 #[derive(Debug, Clone)]
@@ -29,6 +30,16 @@ pub(super) struct Loaded {
     /// The checked sensors (for an ASTERIX plot file's SAC/SIC).
     pub(super) sensors: Vec<Sensor>,
     pub(super) reference: Option<Reference>,
+    /// `(sensor, γ)` of each geodetic site whose own north is not the reference
+    /// frame's ([`Sensor::grid_rotation`]).
+    pub(super) grid_rotations: Vec<(u32, f64)>,
+}
+
+impl Loaded {
+    /// `p` in the reference frame ([`geo::to_reference`]).
+    pub(super) fn to_reference(&self, p: FilePlot) -> FilePlot {
+        geo::to_reference(&self.grid_rotations, p)
+    }
 }
 
 /// Reads and checks the configuration at `path` ([`load_all`] without the reference).
@@ -52,6 +63,11 @@ pub(super) fn load_all(path: &Path) -> Result<Loaded, CliError> {
     let src = Source { path, text: &text };
     let reference = geo::reference(src, file.reference.as_ref())?;
     let sensors = spec::sensors(src, &file.sensors, reference.as_ref())?;
+    let grid_rotations = sensors
+        .iter()
+        .filter(|s| s.grid_rotation != 0.0)
+        .map(|s| (s.id, s.grid_rotation))
+        .collect();
     let estimator = spec::estimator(src, &file.estimator)?;
     let all = sensors.clone();
     let job = match &file.tracker {
@@ -64,5 +80,6 @@ pub(super) fn load_all(path: &Path) -> Result<Loaded, CliError> {
         job,
         sensors: all,
         reference,
+        grid_rotations,
     })
 }

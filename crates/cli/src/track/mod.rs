@@ -57,25 +57,27 @@ pub fn run(
     let reference = loaded.reference.as_ref();
     // `None` for CSV, which is then read as before (streamed for the tracker).
     let asterix = source::read(plots_path, config, &loaded.sensors)?;
-    match loaded.job {
+    match &loaded.job {
         job::Job::Single { sensors, estimator } => {
-            let plots = match asterix {
-                Some(a) => a.plots,
+            let plots = match &asterix {
+                Some(a) => a.plots.clone(),
                 None => plotfile::read(plots_path)?,
             };
+            let plots: Vec<_> = plots.into_iter().map(|p| loaded.to_reference(p)).collect();
             let ctx = start::Ctx {
                 config,
                 plots_path,
-                sensors: &sensors,
+                sensors,
                 reference,
                 smoothing,
             };
-            let rows = single::run(&ctx, &estimator, &plots)?;
+            let rows = single::run(&ctx, estimator, &plots)?;
             let n = rows.rows();
             write_atomic(out, rows.into_text().as_bytes())?;
             Ok((n, None))
         }
-        job::Job::Multi(mut m) => {
+        job::Job::Multi(m) => {
+            let mut m = m.clone();
             let mut files = multi::Files {
                 config,
                 plots: plots_path,
@@ -86,11 +88,16 @@ pub fn run(
             };
             let (n, summary) = match &asterix {
                 Some(a) => {
-                    multi::set_rotations(&mut m, &a.rotations);
+                    multi::set_rotations(&mut m, &a.rotations, &loaded.grid_rotations);
                     files.markers = &a.markers;
-                    multi::run(&m, &files, a.plots.iter().copied().map(Ok))?
+                    let plots = a.plots.iter().map(|p| Ok(loaded.to_reference(*p)));
+                    multi::run(&m, &files, plots)?
                 }
-                None => multi::run(&m, &files, plotfile::PlotReader::open(plots_path)?)?,
+                None => {
+                    let plots = plotfile::PlotReader::open(plots_path)?
+                        .map(|p| p.map(|p| loaded.to_reference(p)));
+                    multi::run(&m, &files, plots)?
+                }
             };
             Ok((n, Some(summary)))
         }

@@ -39,16 +39,24 @@ pub(super) struct Files<'a> {
 }
 
 /// Gives the sensors the rotations an ASTERIX file's CAT034 messages state (the
-/// configured direction kept).
-pub(super) fn set_rotations(m: &mut MultiTarget, rotations: &[super::source::MessageRotation]) {
+/// configured direction kept; a geodetic site's `north_time` moved by its grid rotation
+/// `γ`, as a configured one is, [`super::spec::turned`]).
+pub(super) fn set_rotations(
+    m: &mut MultiTarget,
+    rotations: &[super::source::MessageRotation],
+    grid_rotations: &[(u32, f64)],
+) {
     for r in rotations {
         if let Some(s) = m.config.sensors.iter_mut().find(|s| s.id.0 == r.sensor) {
             let direction = s.rotation.map(|x| x.direction).unwrap_or_default();
-            s.rotation = Some(
-                argus_tracker::Rotation::clockwise(r.period)
-                    .with_direction(direction)
-                    .with_north_time(r.north_time),
-            );
+            let gamma = grid_rotations
+                .iter()
+                .find(|(id, _)| *id == r.sensor)
+                .map_or(0.0, |(_, g)| *g);
+            let stated = argus_tracker::Rotation::clockwise(r.period)
+                .with_direction(direction)
+                .with_north_time(r.north_time);
+            s.rotation = Some(super::spec::turned(stated, gamma));
         }
     }
 }

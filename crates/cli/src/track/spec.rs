@@ -25,10 +25,15 @@ pub(super) struct Sensor {
     /// Elevation σ (rad).
     pub(super) sigma_elevation: Option<f64>,
     /// A rotating radar's beam (used by the multi-target tracker, whose configuration
-    /// checks its values; the single-target estimators take each plot at its time).
+    /// checks its values; the single-target estimators take each plot at its time), in
+    /// the reference frame: a geodetic site's `north_time` is moved by `γ` (below).
     pub(super) rotation: Option<Rotation>,
     /// Its ASTERIX data source (`sac`, `sic`; default `256 · SAC + SIC = id`).
     pub(super) asterix: Option<argus_asterix::DataSource>,
+    /// `γ` (rad): a geodetic site's own east axis from the reference frame's, by which
+    /// its plots' azimuths are turned ([`super::geo::sensor_position`]); 0 for a sensor
+    /// given by `position`.
+    pub(super) grid_rotation: f64,
 }
 
 /// A checked estimator: its kind and the CV model's white-acceleration σ (m/s²), or the
@@ -107,9 +112,12 @@ pub(super) fn sensors(
     let mut sensors: Vec<Sensor> = Vec::with_capacity(tables.len());
     for s in tables {
         let id = *s.id.get_ref();
-        let position = match (geo::sensor_position(src, s, reference)?, &s.position) {
-            (Some(enu), _) => enu,
-            (None, Some(p)) => xy_position(src, id, p)?,
+        let (position, grid_rotation) = match (
+            geo::sensor_position(src, s, reference)?,
+            &s.position,
+        ) {
+            (Some(site), _) => site,
+            (None, Some(p)) => (xy_position(src, id, p)?, 0.0),
             (None, None) => {
                 return Err(src.at(
                     &s.id,
@@ -139,7 +147,8 @@ pub(super) fn sensors(
             position,
             polar,
             sigma_elevation,
-            rotation: rotation(src, id, s)?,
+            rotation: rotation(src, id, s)?.map(|r| turned(r, grid_rotation)),
+            grid_rotation,
             asterix: super::source::data_source(src, id, s)?,
         });
     }
@@ -202,6 +211,19 @@ fn rotation(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<Rotation
         direction,
         north_time: s.north_time.as_ref().map_or(0.0, |n| *n.get_ref()),
     }))
+}
+
+/// The beam of a site whose east axis is `γ` from the reference frame's: it points at
+/// the site's north, the reference frame's azimuth `π/2 + γ`, at `north_time`, so in the
+/// reference frame it points at `π/2` when it has turned by `−γ` more (clockwise: at
+/// `north_time + γ P / 2π`; counter-clockwise: `north_time − γ P / 2π`).
+pub(super) fn turned(r: Rotation, gamma: f64) -> Rotation {
+    let shift = gamma * r.period / std::f64::consts::TAU;
+    let north_time = match r.direction {
+        RotationDirection::Clockwise => r.north_time + shift,
+        RotationDirection::Counterclockwise => r.north_time - shift,
+    };
+    Rotation { north_time, ..r }
 }
 
 /// Checks `[estimator]` and fills in its defaults.

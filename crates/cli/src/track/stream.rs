@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use argus_tracker::Tracker;
 
 use super::feed::Feed;
-use super::geo::Reference;
+use super::geo::{self, Reference};
 use super::job::{self, Job};
 use super::multi::{self, Files, Tally};
 use super::rows::TrackRows;
@@ -23,6 +23,8 @@ pub struct TrackStream {
     tracker: Tracker,
     config: PathBuf,
     reference: Option<Reference>,
+    /// Geodetic sites' `(sensor, γ)` ([`geo::to_reference`]).
+    grid_rotations: Vec<(u32, f64)>,
 }
 
 impl TrackStream {
@@ -39,6 +41,7 @@ impl TrackStream {
                 job: m,
                 config: config.to_path_buf(),
                 reference: loaded.reference,
+                grid_rotations: loaded.grid_rotations,
             }),
             Job::Single { .. } => Err(CliError::input(
                 config,
@@ -80,7 +83,8 @@ impl TrackStream {
         let mut tally = Tally::new(&mut out, None);
         let mut feed = Feed::new(&self.job.config);
         for p in plots {
-            feed.push(&mut self.tracker, &mut tally, &files, p)?;
+            let p = geo::to_reference(&self.grid_rotations, *p);
+            feed.push(&mut self.tracker, &mut tally, &files, &p)?;
         }
         // The call's last plots are a whole scan; a rotating sensor's sector stays open
         // until a later call's plots (or none: the tracker holds it) pass its end.
