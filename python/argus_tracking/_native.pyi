@@ -1,7 +1,7 @@
 """Type stubs of the native module (the Rust side of argus_tracking)."""
 
 from os import PathLike
-from typing import Any, Optional, Sequence, Tuple, Union
+from typing import Any, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -12,7 +12,9 @@ ArrayLike = npt.ArrayLike
 _Path = Union[str, PathLike]
 
 class Filter:
-    """Base of the filter classes: stateless predict / update / step / run."""
+    """Base of the filter classes. Stateful like FilterPy (the object owns ``x`` and ``P``:
+    ``predict(dt)``, ``update(z)``) and functional (``predict(x, P, dt)``,
+    ``update(x, P, z)``, ``step``, ``run``, ``smooth``: the own state is not touched)."""
 
     @property
     def dim_x(self) -> int: ...
@@ -20,8 +22,31 @@ class Filter:
     def dim_z(self) -> int: ...
     @property
     def model(self) -> str: ...
+    @property
+    def x(self) -> np.ndarray:
+        """The own state mean (a new array); settable (checked)."""
+    @x.setter
+    def x(self, value: ArrayLike) -> None: ...
+    @property
+    def P(self) -> np.ndarray:
+        """The own state covariance (a new array); settable (checked positive definite)."""
+    @P.setter
+    def P(self, value: ArrayLike) -> None: ...
+    @property
+    def nis(self) -> Optional[float]:
+        """The NIS of the last stateful ``update(z)`` (``None`` before it / after a set)."""
+    def set_state(self, x: ArrayLike, P: ArrayLike) -> None:
+        """Sets the own ``(x, P)`` at once (checked together; unchanged on an error)."""
+    @overload
+    def predict(self, dt: float) -> None:
+        """Predicts the own ``(x, P)`` over ``dt`` seconds in place."""
+    @overload
     def predict(self, x: ArrayLike, P: ArrayLike, dt: float) -> Tuple[np.ndarray, np.ndarray]:
         """``(x, P)`` predicted over ``dt`` seconds."""
+    @overload
+    def update(self, z: ArrayLike) -> None:
+        """Updates the own ``(x, P)`` with the plot ``z`` in place (NIS in ``nis``)."""
+    @overload
     def update(self, x: ArrayLike, P: ArrayLike, z: ArrayLike) -> Tuple[np.ndarray, np.ndarray]:
         """``(x, P)`` updated with the plot ``z``."""
     def step(
@@ -35,8 +60,12 @@ class Filter:
         x0: ArrayLike,
         P0: ArrayLike,
         t0: Optional[float] = None,
+        *,
+        reuse_gain: bool = True,
     ) -> FilterRun:
-        """Filters ``plots`` (``n × 2``) at ``times`` from ``(x0, P0)`` at ``t0``."""
+        """Filters ``plots`` (``n × dim_z``) at ``times`` from ``(x0, P0)`` at ``t0``. With
+        ``reuse_gain`` the KF reuses the covariance recursion of an earlier step with the
+        same ``dt`` and bit-identical prior covariance (the same result to the bit)."""
     def smooth(
         self,
         times: ArrayLike,
@@ -48,8 +77,10 @@ class Filter:
         """Fixed-interval RTS (unscented RTS for the UKF) smoothing of the same run."""
 
 class KalmanFilter(Filter):
-    """Linear KF on ``"cv"`` (q = σ_a, m/s²), ``"ca"`` (q = σ_j, m/s³) or ``"ct"`` (q = σ_v,
-    turn rate ``omega`` rad/s) with a Cartesian position sensor of covariance ``R``."""
+    """Linear KF on ``"cv"`` (q = σ_a, m/s²), ``"ca"`` (q = σ_j, m/s³), ``"ct"`` (q = σ_v,
+    turn rate ``omega`` rad/s) with a Cartesian position sensor of covariance ``R``
+    (2 × 2), or on ``"cv3"`` / ``"ca3"`` with ``R`` 3 × 3. ``x`` / ``P``: the own starting
+    estimate (default 0 and I, as FilterPy)."""
 
     def __init__(
         self,
@@ -59,11 +90,15 @@ class KalmanFilter(Filter):
         *,
         omega: float = 0.0,
         joseph: bool = True,
+        x: Optional[ArrayLike] = None,
+        P: Optional[ArrayLike] = None,
     ) -> None: ...
 
 class ExtendedKalmanFilter(Filter):
-    """EKF with a polar radar (``sigma_range`` m, ``sigma_azimuth`` rad, at
-    ``sensor_position``) or a Cartesian sensor (``sensor="cartesian"``, ``R``)."""
+    """EKF with a polar radar (planar models; ``sigma_range`` m, ``sigma_azimuth`` rad, at
+    ``sensor_position`` (x, y)), a spherical radar (``sensor="spherical"``, ``"cv3"`` /
+    ``"ca3"``; also ``sigma_elevation`` rad, ``sensor_position`` (x, y, z)) or a Cartesian
+    sensor (``sensor="cartesian"``, ``R``)."""
 
     def __init__(
         self,
@@ -73,10 +108,13 @@ class ExtendedKalmanFilter(Filter):
         sensor: str = "polar",
         sigma_range: Optional[float] = None,
         sigma_azimuth: Optional[float] = None,
-        sensor_position: Tuple[float, float] = (0.0, 0.0),
+        sigma_elevation: Optional[float] = None,
+        sensor_position: Optional[Sequence[float]] = None,
         R: Optional[ArrayLike] = None,
         omega: float = 0.0,
         joseph: bool = True,
+        x: Optional[ArrayLike] = None,
+        P: Optional[ArrayLike] = None,
     ) -> None: ...
 
 class UnscentedKalmanFilter(Filter):
@@ -90,12 +128,15 @@ class UnscentedKalmanFilter(Filter):
         sensor: str = "polar",
         sigma_range: Optional[float] = None,
         sigma_azimuth: Optional[float] = None,
-        sensor_position: Tuple[float, float] = (0.0, 0.0),
+        sigma_elevation: Optional[float] = None,
+        sensor_position: Optional[Sequence[float]] = None,
         R: Optional[ArrayLike] = None,
         omega: float = 0.0,
         alpha: float = 1.0,
         beta: float = 2.0,
         kappa: float = 0.0,
+        x: Optional[ArrayLike] = None,
+        P: Optional[ArrayLike] = None,
     ) -> None: ...
 
 _Model = Union[Tuple[str, float], Tuple[str, float, float]]
@@ -182,3 +223,4 @@ def nees(x: ArrayLike, P: ArrayLike, truth: ArrayLike) -> np.ndarray: ...
 def chi2_interval(dim: int, runs: int = 1, confidence: float = 0.95) -> Tuple[float, float]: ...
 def ospa(truth: ArrayLike, estimates: ArrayLike, cutoff: float, order: float = 1.0) -> dict: ...
 def gospa(truth: ArrayLike, estimates: ArrayLike, cutoff: float, order: float = 2.0) -> dict: ...
+def score_json(tracks: tuple, truth: tuple, config: dict) -> str: ...

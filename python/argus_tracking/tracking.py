@@ -31,8 +31,8 @@ _INT = {"sensor", "track"}
 Config = Union[str, "os.PathLike[str]", "dict[str, Any]"]
 
 
-def _columns(plots: Any) -> "tuple[list[str], list[Any]]":
-    """The column names and value sequences of a plot table."""
+def _columns(plots: Any, name: str = "plots") -> "tuple[list[str], list[Any]]":
+    """The column names and value sequences of a table (argument ``name``)."""
     if hasattr(plots, "dtype") and getattr(plots.dtype, "names", None):
         names = list(plots.dtype.names)
         return names, [plots[n] for n in names]
@@ -43,7 +43,7 @@ def _columns(plots: Any) -> "tuple[list[str], list[Any]]":
         names = [str(k) for k in plots]
         return names, [np.asarray(v) for v in plots.values()]
     raise InvalidInputError(
-        "argument 'plots': expected a numpy structured array, a pandas DataFrame or a dict "
+        f"argument '{name}': expected a numpy structured array, a pandas DataFrame or a dict "
         f"of columns, got {type(plots).__name__}",
         "argus_python::InputError",
     )
@@ -59,13 +59,14 @@ def _cell(v: Any) -> str:
     return str(v)
 
 
-def plots_text(plots: Any) -> str:
-    """The plot file text of a plot table (floats written so they read back exactly)."""
-    names, cols = _columns(plots)
+def plots_text(plots: Any, name: str = "plots") -> str:
+    """The CSV text of a table (a plot table, or the tracks / truth of ``score_tracks``),
+    floats written so they read back exactly; ``name`` is the argument named in errors."""
+    names, cols = _columns(plots, name)
     lengths = {len(c) for c in cols}
     if len(lengths) > 1:
         raise InvalidInputError(
-            f"argument 'plots': columns of different lengths {sorted(lengths)}",
+            f"argument '{name}': columns of different lengths {sorted(lengths)}",
             "argus_python::InputError",
         )
     out = io.StringIO()

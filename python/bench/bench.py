@@ -2,8 +2,9 @@
 
     python python/bench/bench.py [--argus target/release/argus] [--quick]
 
-(a) one KF step called from Python (predict() + update(), and the one-call step())
-    against FilterPy's KalmanFilter.predict() + update();
+(a) one KF step called from Python against FilterPy's KalmanFilter.predict() +
+    update(z): the stateful predict(dt) + update(z) (the object owns x and P, as
+    FilterPy's), and the functional predict(x, P, dt) + update(x, P, z) and step();
 (b) a batch run over 10⁵ steps against a FilterPy loop over the same plots;
 (c) one gimpo run (seed 3, run 0, from `argus simulate gimpo`) tracked by Argus's
     3-mode IMM (CV, CT ±3°/s) against FilterPy's IMMEstimator with the same models;
@@ -61,12 +62,25 @@ def fkf(f, q, x0, p0):
     return k
 
 
-def bench_step(n: int) -> "tuple[float, float, float]":
+def bench_step(n: int) -> "tuple[float, float, float, float]":
     x0 = np.array([1000.0, 10.0, 2000.0, -5.0])
     p0 = np.diag([100.0, 10.0, 100.0, 10.0])
     z = np.array([1010.0, 1995.0])
     kf = at.KalmanFilter("cv", q=1.0, R=R)
     ref = fkf(cv_f(1.0), Q_discrete_white_noise(2, 1.0, 1.0, block_size=2), x0, p0)
+    own = at.KalmanFilter("cv", q=1.0, R=R, x=x0, P=p0)
+    ref_own = fkf(cv_f(1.0), Q_discrete_white_noise(2, 1.0, 1.0, block_size=2), x0, p0)
+
+    def ours_stateful():
+        # FilterPy's form on both sides: the object's own state, one plot per step.
+        for _ in range(n):
+            own.predict(1.0)
+            own.update(z)
+
+    def theirs_stateful():
+        for _ in range(n):
+            ref_own.predict()
+            ref_own.update(z)
 
     def ours():
         for _ in range(n):
@@ -83,10 +97,11 @@ def bench_step(n: int) -> "tuple[float, float, float]":
             ref.predict()
             ref.update(z)
 
-    return best(ours) / n, best(ours_step) / n, best(theirs, 3) / n
+    return (best(ours_stateful) / n, best(theirs_stateful, 3) / n, best(ours) / n,
+            best(ours_step) / n, best(theirs, 3) / n)
 
 
-def bench_batch(n: int) -> "tuple[float, float]":
+def bench_batch(n: int) -> "tuple[float, float, float]":
     rng = np.random.default_rng(0)
     t = np.arange(1, n + 1, dtype=float)
     z = np.stack([1000 + 10 * t, 2000 - 5 * t], axis=1) + rng.normal(scale=50, size=(n, 2))
@@ -94,6 +109,8 @@ def bench_batch(n: int) -> "tuple[float, float]":
     p0 = np.diag([100.0, 10.0, 100.0, 10.0])
     kf = at.KalmanFilter("cv", q=1.0, R=R)
     ours = best(lambda: kf.run(t, z, x0, p0, t0=0.0))
+    # The same run computing every step's covariance recursion (no reuse).
+    full = best(lambda: kf.run(t, z, x0, p0, t0=0.0, reuse_gain=False))
 
     def theirs():
         ref = fkf(cv_f(1.0), Q_discrete_white_noise(2, 1.0, 1.0, block_size=2), x0, p0)
@@ -103,7 +120,7 @@ def bench_batch(n: int) -> "tuple[float, float]":
             ref.update(z[k])
             xs[k] = ref.x
 
-    return ours, best(theirs, 1)
+    return ours, full, best(theirs, 1)
 
 
 def gimpo_plots(argus: str, folder: str) -> "tuple[np.ndarray, np.ndarray]":
@@ -166,8 +183,8 @@ def main() -> None:
     a = ap.parse_args()
     n_step = 2_000 if a.quick else 20_000
     with tempfile.TemporaryDirectory() as folder:
-        s_ours, s_step, s_theirs = bench_step(n_step)
-        b_ours, b_theirs = bench_batch(100_000)
+        o_ours, o_theirs, s_ours, s_step, s_theirs = bench_step(n_step)
+        b_ours, b_full, b_theirs = bench_batch(100_000)
         t, z = gimpo_plots(a.argus, folder)
         i_ours, i_theirs = bench_imm(t, z)
         c_ours, c_cli = bench_campaign(a.argus, folder)
@@ -176,12 +193,16 @@ def main() -> None:
           f"load average {load[0]:.1f} at the end; Python {platform.python_version()}\n")
     print("| comparison | argus_tracking | other | ratio | goal |")
     print("|---|---|---|---|---|")
-    print(f"| (a) one KF step: predict() + update() vs FilterPy | {s_ours * 1e6:.2f} µs | "
+    print(f"| (a) one KF step: stateful predict(dt) + update(z) vs FilterPy predict() + update(z) | "
+          f"{o_ours * 1e6:.2f} µs | {o_theirs * 1e6:.2f} µs | {o_theirs / o_ours:.1f}× | ≥ 20× |")
+    print(f"| (a) one KF step: functional predict(x, P, dt) + update(x, P, z) vs FilterPy | {s_ours * 1e6:.2f} µs | "
           f"{s_theirs * 1e6:.2f} µs | {s_theirs / s_ours:.1f}× | ≥ 20× |")
     print(f"| (a) one KF step: step() vs FilterPy predict() + update() | {s_step * 1e6:.2f} µs | "
           f"{s_theirs * 1e6:.2f} µs | {s_theirs / s_step:.1f}× | ≥ 20× |")
     print(f"| (b) batch run, 10⁵ steps, vs FilterPy loop | {b_ours * 1e3:.1f} ms | "
           f"{b_theirs * 1e3:.0f} ms | {b_theirs / b_ours:.0f}× | ≥ 1000× |")
+    print(f"| (b) the same, reuse_gain=False (every step's covariance computed) | "
+          f"{b_full * 1e3:.1f} ms | {b_theirs * 1e3:.0f} ms | {b_theirs / b_full:.0f}× | (≥ 1000×) |")
     print(f"| (c) one gimpo run ({len(t)} plots), 3-mode IMM vs FilterPy IMMEstimator | "
           f"{i_ours * 1e3:.2f} ms | {i_theirs * 1e3:.0f} ms | {i_theirs / i_ours:.0f}× | ≥ 1000× |")
     print(f"| (d) 100-run gimpo campaign: run_scenario vs `argus run` | {c_ours:.2f} s | "

@@ -3,10 +3,13 @@
 //! sequences; anything else, a wrong shape or a NaN is an `InvalidInputError` naming the
 //! argument, the index and the problem. Outputs are new C-contiguous float64 arrays.
 
+use std::borrow::Cow;
+
 use argus_core_math::{Matrix, Vector};
 use numpy::{PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray};
 use numpy::{PyArrayDescrMethods, PyUntypedArrayMethods, dtype};
 use pyo3::prelude::*;
+use pyo3::types::{PyList, PyTuple};
 
 use crate::errors::input;
 
@@ -51,15 +54,15 @@ fn shape_text(shape: &[usize]) -> String {
     }
 }
 
-/// Reads `obj` as an array of exactly `shape` (`None` = any length on that axis), in
-/// row-major order, checking every entry is finite. Returns the values and the shape.
-pub(crate) fn read(
-    obj: &Bound<'_, PyAny>,
+/// `obj` as a read-only float64 array of exactly `shape` (`None` = any length on that
+/// axis), converted if it is not one already.
+pub(crate) fn array<'py>(
+    obj: &Bound<'py, PyAny>,
     name: &str,
     shape: &[Option<usize>],
-) -> PyResult<(Vec<f64>, Vec<usize>)> {
+) -> PyResult<PyReadonlyArrayDyn<'py, f64>> {
     let a = float_array(obj, name)?;
-    let got = a.shape().to_vec();
+    let got = a.shape();
     let ok = got.len() == shape.len()
         && got
             .iter()
@@ -77,21 +80,46 @@ pub(crate) fn read(
         };
         return Err(input(format!(
             "argument '{name}': expected shape {want}, got {}",
-            shape_text(&got)
+            shape_text(got)
         )));
     }
-    let values: Vec<f64> = match a.as_slice() {
-        Ok(s) => s.to_vec(),
-        Err(_) => a.as_array().iter().copied().collect(),
+    Ok(a)
+}
+
+/// The entries of `a` in row-major order — its own memory when it is C-contiguous, a
+/// copy otherwise — checked finite.
+pub(crate) fn values<'a>(
+    a: &'a PyReadonlyArrayDyn<'_, f64>,
+    name: &str,
+) -> PyResult<Cow<'a, [f64]>> {
+    let values: Cow<'a, [f64]> = match a.as_slice() {
+        Ok(s) => Cow::Borrowed(s),
+        Err(_) => Cow::Owned(a.as_array().iter().copied().collect()),
     };
-    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+    // `0 v` is ±0 for a finite `v` and NaN otherwise, so the sum is NaN exactly when an
+    // entry is not finite: one pass the compiler vectorises; the entry is looked for only
+    // then.
+    let all_finite = values.iter().fold(0.0, |acc, v| acc + 0.0 * v) == 0.0;
+    if !all_finite && let Some(i) = values.iter().position(|v| !v.is_finite()) {
         return Err(input(format!(
             "argument '{name}': entry {} is {} (every entry must be finite)",
-            index_text(i, &got),
+            index_text(i, a.shape()),
             values[i]
         )));
     }
-    Ok((values, got))
+    Ok(values)
+}
+
+/// Reads `obj` as an array of exactly `shape` (`None` = any length on that axis), in
+/// row-major order, checking every entry is finite. Returns the values and the shape.
+pub(crate) fn read(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    shape: &[Option<usize>],
+) -> PyResult<(Vec<f64>, Vec<usize>)> {
+    let a = array(obj, name, shape)?;
+    let v = values(&a, name)?.into_owned();
+    Ok((v, a.shape().to_vec()))
 }
 
 /// The multi-index of flat row-major position `i` in `shape`, e.g. `[1, 2]`.
@@ -111,6 +139,37 @@ pub(crate) fn index_text(mut i: usize, shape: &[usize]) -> String {
 pub(crate) fn vector<const N: usize>(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vector<N>> {
     let (v, _) = read(obj, name, &[Some(N)])?;
     Ok(Vector::<N>::from_column_slice(&v))
+}
+
+/// A length-`M` vector argument on the per-call path of the stateful filters: a 1-D
+/// float64 array of length `M` (any stride) is read element by element and a list or
+/// tuple of `M` floats item by item, neither converted through numpy nor allocated;
+/// anything else, and any value that fails a check, takes [`vector`]'s general path,
+/// which converts it or raises its error (so the errors are the same).
+pub(crate) fn small_vector<const M: usize>(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+) -> PyResult<Vector<M>> {
+    let mut v = Vector::<M>::zeros();
+    let read_all = |v: &mut Vector<M>, get: &dyn Fn(usize) -> Option<f64>| {
+        (0..M).all(|i| match get(i) {
+            Some(x) if x.is_finite() => {
+                v[i] = x;
+                true
+            }
+            _ => false,
+        })
+    };
+    let fast = if let Ok(a) = obj.cast::<PyArray1<f64>>() {
+        a.len() == M && read_all(&mut v, &|i| a.get_owned([i]))
+    } else if let Ok(t) = obj.cast::<PyTuple>() {
+        t.len() == M && read_all(&mut v, &|i| t.get_item(i).ok()?.extract::<f64>().ok())
+    } else if let Ok(l) = obj.cast::<PyList>() {
+        l.len() == M && read_all(&mut v, &|i| l.get_item(i).ok()?.extract::<f64>().ok())
+    } else {
+        false
+    };
+    if fast { Ok(v) } else { vector::<M>(obj, name) }
 }
 
 /// An `R × C` matrix argument (row-major in numpy).
@@ -146,6 +205,21 @@ pub(crate) fn out_matrix<'py, const R: usize, const C: usize>(
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let t = m.transpose();
     PyArray1::from_slice(py, t.as_slice()).reshape([R, C])
+}
+
+/// A new float64 array of `shape` to be written whole by a batch run: `numpy.empty`
+/// (not zeroed: filling 10⁵ steps' covariances with zeros first cost a sixth of the run;
+/// every bit pattern is a valid float64, and the run writes every entry), from numpy's
+/// allocator (large arrays get huge pages where the system offers them).
+pub(crate) fn empty<'py>(
+    py: Python<'py>,
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let np = py.import("numpy")?;
+    let a = np
+        .getattr("empty")?
+        .call1((shape.to_vec(), dtype::<f64>(py)))?;
+    Ok(a.cast_into::<PyArrayDyn<f64>>()?)
 }
 
 /// A new array of `shape` from row-major `values`.

@@ -1,155 +1,25 @@
-//! `KalmanFilter`, `ExtendedKalmanFilter`, `UnscentedKalmanFilter`: stateless filters on
-//! the CV, CA and CT motion models with a Cartesian position or a polar radar sensor.
-//! The estimate is passed in and a new one returned; a batch `run` filters a whole plot
-//! array in one call with the GIL released.
+//! `KalmanFilter`, `ExtendedKalmanFilter`, `UnscentedKalmanFilter` on the CV, CA and CT
+//! motion models (and the 3-D CV, CA) with a Cartesian position, polar or spherical radar
+//! sensor. Two forms: functional (the estimate is passed in and a new one returned) and
+//! stateful like FilterPy's (the object owns `x` and `P`; `predict(dt)` / `update(z)`
+//! change them in place); a batch `run` filters a whole plot array in one call with the
+//! GIL released.
 
-use argus_core_math::Matrix;
-use argus_filters::{CovarianceForm, Ekf, Kf, Ukf, UtParams};
-use argus_motion_models::{Ca2D, CoordinatedTurn, Cv2D, LinearMotionModel};
-use argus_sensors::{CartesianPosition, Polar2D, RadarNoise};
+use argus_filters::{CovarianceForm, UtParams};
+use numpy::{PyArray1, PyArray2};
+use numpy::{PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::PyClassInitializer;
 use pyo3::prelude::*;
 
-use crate::arrays::{finite, matrix, out_array, read};
+use crate::arrays::{array, empty, finite, out_array, read, values};
 use crate::errors::{Kind, input, invalid, raise, rust_name};
-use crate::filter_core::{DynFilter, Estimate, RunFail, SmoothFail, Typed, filter_error};
+use crate::filter_build::{FilterKind, SensorArgs, make, model_dimension, sensor_spec};
+use crate::filter_core::{DynFilter, Estimate, RunFail, RunSlices, SmoothFail, filter_error};
 
-/// Which filter.
-#[derive(Debug, Clone, Copy)]
-enum FilterKind {
-    Kf(CovarianceForm),
-    Ekf(CovarianceForm),
-    Ukf(UtParams),
-}
-
-/// The sensor of a filter.
-#[derive(Debug, Clone, Copy)]
-enum SensorSpec {
-    /// `z = (x, y)` with covariance `R`.
-    Cartesian(Matrix<2, 2>),
-    /// `z = (range, azimuth)` from `position`, azimuth from the x axis counter-clockwise.
-    Polar {
-        position: [f64; 2],
-        sigma_range: f64,
-        sigma_azimuth: f64,
-    },
-}
-
-fn boxed<F, Me, const N: usize, const M: usize>(filter: F, meas: Me) -> Box<dyn DynFilter>
-where
-    Typed<F, Me, N, M>: DynFilter + 'static,
-{
-    Box::new(Typed::<F, Me, N, M> { filter, meas })
-}
-
-fn with_model<const N: usize, Mo>(
-    kind: FilterKind,
-    model: Mo,
-    indices: [usize; 2],
-    sensor: SensorSpec,
-) -> PyResult<Box<dyn DynFilter>>
-where
-    Mo: LinearMotionModel<N> + Send + Sync + 'static,
-{
-    let sensor_err = |e: argus_sensors::SensorError| invalid("SensorError", "sensor", &e);
-    match sensor {
-        SensorSpec::Cartesian(r) => {
-            let meas = CartesianPosition::<N, 2>::new(indices, r)
-                .map_err(|e| invalid("SensorError", "argument 'R'", &e))?;
-            Ok(match kind {
-                FilterKind::Kf(form) => boxed::<_, _, N, 2>(Kf::with_form(model, form), meas),
-                FilterKind::Ekf(form) => boxed::<_, _, N, 2>(Ekf::with_form(model, form), meas),
-                FilterKind::Ukf(params) => boxed::<_, _, N, 2>(
-                    Ukf::<N, Mo>::new(model, params)
-                        .map_err(|e| filter_error("unscented transform", &e))?,
-                    meas,
-                ),
-            })
-        }
-        SensorSpec::Polar {
-            position,
-            sigma_range,
-            sigma_azimuth,
-        } => {
-            let noise =
-                RadarNoise::constant(sigma_range, sigma_azimuth, 0.0).map_err(sensor_err)?;
-            let meas = Polar2D::<N>::new(indices, position, noise).map_err(sensor_err)?;
-            Ok(match kind {
-                FilterKind::Kf(_) => {
-                    return Err(input(
-                        "KalmanFilter needs a linear (Cartesian) sensor: use \
-                         ExtendedKalmanFilter or UnscentedKalmanFilter for polar plots",
-                    ));
-                }
-                FilterKind::Ekf(form) => boxed::<_, _, N, 2>(Ekf::with_form(model, form), meas),
-                FilterKind::Ukf(params) => boxed::<_, _, N, 2>(
-                    Ukf::<N, Mo>::new(model, params)
-                        .map_err(|e| filter_error("unscented transform", &e))?,
-                    meas,
-                ),
-            })
-        }
-    }
-}
-
-/// Builds the filter of `model` (`cv`, `ca` or `ct`) with noise `q` and turn rate `omega`.
-fn make(
-    kind: FilterKind,
-    model: &str,
-    q: f64,
-    omega: f64,
-    sensor: SensorSpec,
-) -> PyResult<Box<dyn DynFilter>> {
-    let motion = |e: argus_motion_models::MotionError| invalid("MotionError", "model", &e);
-    match model {
-        "cv" => with_model::<4, _>(kind, Cv2D::discrete(q).map_err(motion)?, [0, 2], sensor),
-        "ca" => with_model::<6, _>(kind, Ca2D::discrete(q).map_err(motion)?, [0, 3], sensor),
-        "ct" => with_model::<4, _>(
-            kind,
-            CoordinatedTurn::new(omega, q).map_err(motion)?,
-            [0, 2],
-            sensor,
-        ),
-        other => Err(input(format!(
-            "argument 'model': unknown motion model {other:?} (expected 'cv', 'ca' or 'ct')"
-        ))),
-    }
-}
-
-/// The sensor from the constructor's arguments.
-fn sensor_spec(
-    sensor: &str,
-    r: Option<&Bound<'_, PyAny>>,
-    sigma_range: Option<f64>,
-    sigma_azimuth: Option<f64>,
-    sensor_position: (f64, f64),
-) -> PyResult<SensorSpec> {
-    match sensor {
-        "cartesian" => {
-            let r = r.ok_or_else(|| input("argument 'R': a Cartesian sensor needs R (2 × 2)"))?;
-            Ok(SensorSpec::Cartesian(matrix::<2, 2>(r, "R")?))
-        }
-        "polar" => {
-            let sr = sigma_range
-                .ok_or_else(|| input("argument 'sigma_range': a polar sensor needs it (m)"))?;
-            let sa = sigma_azimuth
-                .ok_or_else(|| input("argument 'sigma_azimuth': a polar sensor needs it (rad)"))?;
-            Ok(SensorSpec::Polar {
-                position: [
-                    finite(sensor_position.0, "sensor_position")?,
-                    finite(sensor_position.1, "sensor_position")?,
-                ],
-                sigma_range: sr,
-                sigma_azimuth: sa,
-            })
-        }
-        other => Err(input(format!(
-            "argument 'sensor': unknown sensor {other:?} (expected 'cartesian' or 'polar')"
-        ))),
-    }
-}
-
-/// The base of the three filter classes: `predict`, `update`, `step` and `run`.
+/// The base of the three filter classes. Stateful like FilterPy (the object owns `x` and
+/// `P`: `predict(dt)`, `update(z)`, the `x` / `P` / `nis` properties, `set_state`) and
+/// functional (`predict(x, P, dt)`, `update(x, P, z)`, `step`, `run`, `smooth`: the own
+/// state is not touched).
 #[pyclass(subclass, frozen, module = "argus_tracking._native")]
 pub(crate) struct Filter {
     inner: Box<dyn DynFilter>,
@@ -186,7 +56,7 @@ impl Filter {
         self.inner.n()
     }
 
-    /// Measurement size (2).
+    /// Measurement size (2 for Cartesian 2-D and polar, 3 for Cartesian 3-D and spherical).
     #[getter]
     fn dim_z(&self) -> usize {
         self.inner.m()
@@ -198,26 +68,94 @@ impl Filter {
         &self.model
     }
 
-    /// Predicts `(x, P)` over `dt` seconds; returns the new `(x, P)`.
+    /// The filter's own state mean (a new array; FilterPy's `kf.x`).
+    #[getter]
+    fn x<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.inner.state_x(py)
+    }
+
+    /// Sets the own state mean (checked; the object is unchanged on an error).
+    #[setter]
+    fn set_x(&self, x: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.set_state(Some(x), None)
+    }
+
+    /// The filter's own state covariance (a new array; FilterPy's `kf.P`).
+    #[getter(P)]
+    fn p<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        self.inner.state_p(py)
+    }
+
+    /// Sets the own state covariance (checked symmetric positive definite; the object is
+    /// unchanged on an error).
+    #[setter(P)]
+    fn set_p(&self, p: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.set_state(None, Some(p))
+    }
+
+    /// The NIS of the last stateful `update(z)` (`None` before the first, and after the
+    /// state is set).
+    #[getter]
+    fn nis(&self) -> Option<f64> {
+        self.inner.state_nis()
+    }
+
+    /// Sets the own estimate `(x, P)` at once (checked together; unchanged on an error).
+    #[pyo3(signature = (x, P))]
+    fn set_state(
+        &self,
+        x: &Bound<'_, PyAny>,
+        #[allow(non_snake_case)] P: &Bound<'_, PyAny>,
+    ) -> PyResult<()> {
+        self.inner.set_state(Some(x), Some(P))
+    }
+
+    /// Two forms. `predict(dt)`: predicts the filter's own `(x, P)` over `dt` seconds in
+    /// place and returns `None` (FilterPy's `kf.predict()`). `predict(x, P, dt)`: predicts
+    /// the given `(x, P)` and returns the new `(x, P)`; the own state is not touched.
+    #[pyo3(signature = (x=None, P=None, dt=None))]
     fn predict<'py>(
         &self,
         py: Python<'py>,
-        x: &Bound<'py, PyAny>,
-        #[allow(non_snake_case)] P: &Bound<'py, PyAny>,
-        dt: f64,
-    ) -> PyResult<Estimate<'py>> {
-        self.inner.predict(py, x, P, dt)
+        x: Option<&Bound<'py, PyAny>>,
+        #[allow(non_snake_case)] P: Option<&Bound<'py, PyAny>>,
+        dt: Option<f64>,
+    ) -> PyResult<Option<Estimate<'py>>> {
+        match (x, P, dt) {
+            (Some(x), Some(p), Some(dt)) => self.inner.predict(py, x, p, dt).map(Some),
+            (None, None, Some(dt)) => self.inner.predict_state(dt).map(|()| None),
+            (Some(dt), None, None) => {
+                let dt = dt
+                    .extract::<f64>()
+                    .map_err(|_| input("argument 'dt': predict(dt) needs a number (seconds)"))?;
+                self.inner.predict_state(dt).map(|()| None)
+            }
+            _ => Err(input(
+                "predict takes (dt) for the filter's own state or (x, P, dt) for a given one",
+            )),
+        }
     }
 
-    /// Updates the predicted `(x, P)` with the plot `z`; returns the new `(x, P)`.
+    /// Two forms. `update(z)`: updates the filter's own `(x, P)` with the plot `z` in
+    /// place and returns `None` (FilterPy's `kf.update(z)`; the NIS is in `nis`).
+    /// `update(x, P, z)`: updates the given `(x, P)` and returns the new `(x, P)`.
+    #[pyo3(signature = (x=None, P=None, z=None))]
     fn update<'py>(
         &self,
         py: Python<'py>,
-        x: &Bound<'py, PyAny>,
-        #[allow(non_snake_case)] P: &Bound<'py, PyAny>,
-        z: &Bound<'py, PyAny>,
-    ) -> PyResult<Estimate<'py>> {
-        self.inner.update(py, x, P, z)
+        x: Option<&Bound<'py, PyAny>>,
+        #[allow(non_snake_case)] P: Option<&Bound<'py, PyAny>>,
+        z: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Option<Estimate<'py>>> {
+        match (x, P, z) {
+            (Some(x), Some(p), Some(z)) => self.inner.update(py, x, p, z).map(Some),
+            (None, None, Some(z)) | (Some(z), None, None) => {
+                self.inner.update_state(z).map(|()| None)
+            }
+            _ => Err(input(
+                "update takes (z) for the filter's own state or (x, P, z) for a given one",
+            )),
+        }
     }
 
     /// `predict` over `dt` (none when `dt == 0`) then `update` with `z`, in one call.
@@ -232,10 +170,15 @@ impl Filter {
         self.inner.step(py, x, P, dt, z)
     }
 
-    /// Filters `plots` (`n × 2`) at `times` (`n`, not decreasing) from `(x0, P0)` at `t0`
-    /// (default `times[0]`: the first plot updates the start without a prediction).
+    /// Filters `plots` (`n × dim_z`) at `times` (`n`, not decreasing) from `(x0, P0)` at
+    /// `t0` (default `times[0]`: the first plot updates the start without a prediction).
     /// Returns `(x, P, nis)`: `n × dim_x`, `n × dim_x × dim_x`, `n`. The GIL is released.
-    #[pyo3(signature = (times, plots, x0, P0, t0=None))]
+    /// The filter's own state is not touched. With `reuse_gain` (default) the
+    /// `KalmanFilter` reuses the covariance recursion of an earlier step with the same
+    /// `dt` and bit-identical prior covariance (the gain and posterior covariance do not
+    /// depend on the plots): the result is the same to the bit as with `reuse_gain=False`.
+    #[pyo3(signature = (times, plots, x0, P0, t0=None, *, reuse_gain=true))]
+    #[allow(clippy::too_many_arguments)]
     fn run<'py>(
         &self,
         py: Python<'py>,
@@ -244,17 +187,20 @@ impl Filter {
         x0: &Bound<'py, PyAny>,
         #[allow(non_snake_case)] P0: &Bound<'py, PyAny>,
         t0: Option<f64>,
+        reuse_gain: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let (n, m) = (self.inner.n(), self.inner.m());
-        let (times, _) = read(times, "times", &[None])?;
-        let (plots, shape) = read(plots, "plots", &[None, Some(m)])?;
-        if shape[0] != times.len() {
+        let times_a = array(times, "times", &[None])?;
+        let times = values(&times_a, "times")?;
+        let plots_a = array(plots, "plots", &[None, Some(m)])?;
+        if plots_a.shape()[0] != times.len() {
             return Err(input(format!(
                 "argument 'plots': {} rows for {} times",
-                shape[0],
+                plots_a.shape()[0],
                 times.len()
             )));
         }
+        let plots = values(&plots_a, "plots")?;
         let (x0, _) = read(x0, "x0", &[Some(n)])?;
         let (p0, _) = read(P0, "P0", &[Some(n), Some(n)])?;
         let t0 = match t0 {
@@ -262,19 +208,27 @@ impl Filter {
             None => times.first().copied().unwrap_or(0.0),
         };
         let dts = intervals(&times, t0)?;
-        let inner = &self.inner;
-        let out = py
-            .detach(|| inner.run(&x0, &p0, &dts, &plots))
-            .map_err(|f| match f {
-                RunFail::Start(e) => invalid("MathError", "argument 'P0'", &e),
-                RunFail::Step(k, e) => {
-                    filter_error(&format!("step {k} (times[{k}] = {})", times[k]), &e)
-                }
-            })?;
         let steps = times.len();
-        let x = out_array(py, out.x, &[steps, n])?;
-        let p = out_array(py, out.p, &[steps, n, n])?;
-        let nis = out_array(py, out.nis, &[steps])?;
+        let x = empty(py, &[steps, n])?;
+        let p = empty(py, &[steps, n, n])?;
+        let nis = empty(py, &[steps])?;
+        {
+            let (mut xw, mut pw, mut nw) =
+                (x.try_readwrite()?, p.try_readwrite()?, nis.try_readwrite()?);
+            let out = RunSlices {
+                x: xw.as_slice_mut()?,
+                p: pw.as_slice_mut()?,
+                nis: nw.as_slice_mut()?,
+            };
+            let inner = &self.inner;
+            py.detach(|| inner.run(&x0, &p0, &dts, &plots, reuse_gain, out))
+                .map_err(|f| match f {
+                    RunFail::Start(e) => invalid("MathError", "argument 'P0'", &e),
+                    RunFail::Step(k, e) => {
+                        filter_error(&format!("step {k} (times[{k}] = {})", times[k]), &e)
+                    }
+                })?;
+        }
         let cls = py.import("argus_tracking._results")?.getattr("FilterRun")?;
         cls.call1((x, p, nis))
     }
@@ -333,6 +287,31 @@ fn smooth_error(e: &SmoothFail) -> PyErr {
     }
 }
 
+/// The base's initialiser: the filter, with its own estimate set from `x` / `P` if given.
+fn base(
+    inner: Box<dyn DynFilter>,
+    model: &str,
+    x: Option<&Bound<'_, PyAny>>,
+    p: Option<&Bound<'_, PyAny>>,
+) -> PyResult<PyClassInitializer<Filter>> {
+    if x.is_some() || p.is_some() {
+        inner.set_state(x, p)?;
+    }
+    Ok(PyClassInitializer::from(Filter {
+        inner,
+        model: model.to_owned(),
+    }))
+}
+
+/// The covariance update form.
+fn form(joseph: bool) -> CovarianceForm {
+    if joseph {
+        CovarianceForm::Joseph
+    } else {
+        CovarianceForm::Standard
+    }
+}
+
 /// The linear Kalman filter on a Cartesian position sensor.
 #[pyclass(extends = Filter, frozen, module = "argus_tracking._native")]
 pub(crate) struct KalmanFilter;
@@ -340,37 +319,38 @@ pub(crate) struct KalmanFilter;
 #[pymethods]
 impl KalmanFilter {
     #[new]
-    #[pyo3(signature = (model="cv", q=1.0, R=None, *, omega=0.0, joseph=true))]
+    #[pyo3(signature = (model="cv", q=1.0, R=None, *, omega=0.0, joseph=true, x=None, P=None))]
     fn new(
         model: &str,
         q: f64,
         #[allow(non_snake_case)] R: Option<&Bound<'_, PyAny>>,
         omega: f64,
         joseph: bool,
+        x: Option<&Bound<'_, PyAny>>,
+        #[allow(non_snake_case)] P: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PyClassInitializer<Self>> {
-        let form = if joseph {
-            CovarianceForm::Joseph
-        } else {
-            CovarianceForm::Standard
+        let args = SensorArgs {
+            sensor: "cartesian",
+            r: R,
+            sigma_range: None,
+            sigma_azimuth: None,
+            sigma_elevation: None,
+            sensor_position: None,
         };
-        let sensor = sensor_spec("cartesian", R, None, None, (0.0, 0.0))?;
-        let inner = make(FilterKind::Kf(form), model, q, omega, sensor)?;
-        Ok(PyClassInitializer::from(Filter {
-            inner,
-            model: model.to_owned(),
-        })
-        .add_subclass(Self))
+        let sensor = sensor_spec(&args, model_dimension(model)?)?;
+        let inner = make(FilterKind::Kf(form(joseph)), model, q, omega, sensor)?;
+        Ok(base(inner, model, x, P)?.add_subclass(Self))
     }
 }
 
-/// The extended Kalman filter (polar radar or Cartesian sensor).
+/// The extended Kalman filter (polar or spherical radar, or a Cartesian sensor).
 #[pyclass(extends = Filter, frozen, module = "argus_tracking._native")]
 pub(crate) struct ExtendedKalmanFilter;
 
 #[pymethods]
 impl ExtendedKalmanFilter {
     #[new]
-    #[pyo3(signature = (model="cv", q=1.0, *, sensor="polar", sigma_range=None, sigma_azimuth=None, sensor_position=(0.0, 0.0), R=None, omega=0.0, joseph=true))]
+    #[pyo3(signature = (model="cv", q=1.0, *, sensor="polar", sigma_range=None, sigma_azimuth=None, sigma_elevation=None, sensor_position=None, R=None, omega=0.0, joseph=true, x=None, P=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         model: &str,
@@ -378,23 +358,25 @@ impl ExtendedKalmanFilter {
         sensor: &str,
         sigma_range: Option<f64>,
         sigma_azimuth: Option<f64>,
-        sensor_position: (f64, f64),
+        sigma_elevation: Option<f64>,
+        sensor_position: Option<&Bound<'_, PyAny>>,
         #[allow(non_snake_case)] R: Option<&Bound<'_, PyAny>>,
         omega: f64,
         joseph: bool,
+        x: Option<&Bound<'_, PyAny>>,
+        #[allow(non_snake_case)] P: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PyClassInitializer<Self>> {
-        let form = if joseph {
-            CovarianceForm::Joseph
-        } else {
-            CovarianceForm::Standard
+        let args = SensorArgs {
+            sensor,
+            r: R,
+            sigma_range,
+            sigma_azimuth,
+            sigma_elevation,
+            sensor_position,
         };
-        let spec = sensor_spec(sensor, R, sigma_range, sigma_azimuth, sensor_position)?;
-        let inner = make(FilterKind::Ekf(form), model, q, omega, spec)?;
-        Ok(PyClassInitializer::from(Filter {
-            inner,
-            model: model.to_owned(),
-        })
-        .add_subclass(Self))
+        let spec = sensor_spec(&args, model_dimension(model)?)?;
+        let inner = make(FilterKind::Ekf(form(joseph)), model, q, omega, spec)?;
+        Ok(base(inner, model, x, P)?.add_subclass(Self))
     }
 }
 
@@ -405,7 +387,7 @@ pub(crate) struct UnscentedKalmanFilter;
 #[pymethods]
 impl UnscentedKalmanFilter {
     #[new]
-    #[pyo3(signature = (model="cv", q=1.0, *, sensor="polar", sigma_range=None, sigma_azimuth=None, sensor_position=(0.0, 0.0), R=None, omega=0.0, alpha=1.0, beta=2.0, kappa=0.0))]
+    #[pyo3(signature = (model="cv", q=1.0, *, sensor="polar", sigma_range=None, sigma_azimuth=None, sigma_elevation=None, sensor_position=None, R=None, omega=0.0, alpha=1.0, beta=2.0, kappa=0.0, x=None, P=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         model: &str,
@@ -413,20 +395,27 @@ impl UnscentedKalmanFilter {
         sensor: &str,
         sigma_range: Option<f64>,
         sigma_azimuth: Option<f64>,
-        sensor_position: (f64, f64),
+        sigma_elevation: Option<f64>,
+        sensor_position: Option<&Bound<'_, PyAny>>,
         #[allow(non_snake_case)] R: Option<&Bound<'_, PyAny>>,
         omega: f64,
         alpha: f64,
         beta: f64,
         kappa: f64,
+        x: Option<&Bound<'_, PyAny>>,
+        #[allow(non_snake_case)] P: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<PyClassInitializer<Self>> {
-        let spec = sensor_spec(sensor, R, sigma_range, sigma_azimuth, sensor_position)?;
+        let args = SensorArgs {
+            sensor,
+            r: R,
+            sigma_range,
+            sigma_azimuth,
+            sigma_elevation,
+            sensor_position,
+        };
+        let spec = sensor_spec(&args, model_dimension(model)?)?;
         let params = UtParams { alpha, beta, kappa };
         let inner = make(FilterKind::Ukf(params), model, q, omega, spec)?;
-        Ok(PyClassInitializer::from(Filter {
-            inner,
-            model: model.to_owned(),
-        })
-        .add_subclass(Self))
+        Ok(base(inner, model, x, P)?.add_subclass(Self))
     }
 }

@@ -1,22 +1,28 @@
 //! `argus_tracking._native`: the Rust side of the `argus_tracking` Python package (see
 //! `python/argus_tracking/__init__.py` for the public API and `python/README.md`).
 //!
-//! - [`filters`]: `KalmanFilter`, `ExtendedKalmanFilter`, `UnscentedKalmanFilter`.
+//! - [`filters`]: `KalmanFilter`, `ExtendedKalmanFilter`, `UnscentedKalmanFilter`
+//!   ([`filter_build`] makes them, [`filter_core`] runs them, [`memo_run`] is the KF's
+//!   batch run reusing its covariance recursion).
 //! - [`imm`]: `Imm`, `MultiImm`, `DifferenceImm`.
 //! - [`track`]: `argus track`'s pipeline on files and as a stream.
 //! - [`scenarios`]: the scenario list and campaigns.
 //! - [`metrics`]: NEES / NIS, chi-square intervals, OSPA, GOSPA.
+//! - [`score`]: the real-traffic track scoring (`argus score`).
 //! - [`errors`]: Rust errors as the package's Python exceptions.
 //! - [`arrays`]: numpy arrays in (checked, named) and out.
 
 mod arrays;
 mod errors;
+mod filter_build;
 mod filter_core;
 mod filters;
 mod imm;
 mod imm_core;
+mod memo_run;
 mod metrics;
 mod scenarios;
+mod score;
 mod track;
 
 use pyo3::prelude::*;
@@ -41,5 +47,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(metrics::chi2_interval, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::ospa, m)?)?;
     m.add_function(wrap_pyfunction!(metrics::gospa, m)?)?;
+    m.add_function(wrap_pyfunction!(score::score_json, m)?)?;
     Ok(())
 }

@@ -287,6 +287,16 @@ impl<const N: usize, const M: usize, const P: usize> Glrt<N, M, P> {
         Ok(self)
     }
 
+    /// The same detector, window kept, with threshold `eta`.
+    ///
+    /// # Errors
+    /// As [`GlrtConfig::new`] for `eta`.
+    pub fn with_threshold(mut self, eta: f64) -> Result<Self, AdaptiveError> {
+        let c = self.config;
+        self.config = GlrtConfig::new(c.max_age, c.min_age, eta, c.kind)?;
+        Ok(self)
+    }
+
     /// The prior information on the input (zero unless set by [`Glrt::with_input_prior`]).
     #[must_use]
     pub fn input_prior(&self) -> &Matrix<P, P> {

@@ -130,6 +130,17 @@ impl<const N: usize, const M: usize, const P: usize> ManeuverState<N, M, P> {
         Ok(self)
     }
 
+    /// The same track with the detector's threshold replaced by `eta` (window, input and
+    /// filter kept): `f64::MAX` turns detection off, e.g. to follow the statistic of a
+    /// copy of a running track on noise-free plots.
+    ///
+    /// # Errors
+    /// As [`GlrtConfig::new`] for `eta`.
+    pub fn with_threshold(mut self, eta: f64) -> Result<Self, AdaptiveError> {
+        self.glrt = self.glrt.with_threshold(eta)?;
+        Ok(self)
+    }
+
     /// The compensated estimate (the filter's own plus the MRAS term, if running).
     #[must_use]
     pub fn estimate(&self) -> &Gaussian<N> {

@@ -388,3 +388,50 @@ fn bad_configuration_and_inputs_are_rejected_and_leave_state_unchanged() {
     ));
     assert!(glrt.is_empty());
 }
+
+#[test]
+fn with_threshold_keeps_the_window_and_only_changes_the_decision() {
+    let model = Cv1 { q: Q };
+    let kf = TestKf { model };
+    let meas = Pos1 { r: R };
+    let phi = Matrix::<2, 2>::new(1.0, T, 0.0, 1.0);
+    let g = Matrix::<2, 1>::from_column_slice(gamma().as_slice());
+    let h = Matrix::<1, 2>::new(1.0, 0.0);
+    let mut glrt =
+        Glrt::<2, 1, 1>::new(GlrtConfig::new(20, 0, 1e-12, FailureKind::Persistent).unwrap());
+    assert!(glrt.clone().with_threshold(f64::NAN).is_err());
+    assert!(glrt.clone().with_threshold(0.0).is_err());
+    let mut x = Vector::<2>::new(2000.0, 70.0);
+    let mut est = Gaussian::new(x, Matrix::<2, 2>::identity() * 100.0).unwrap();
+    let mut copy = None;
+    for k in 0..16 {
+        x = phi * x + gamma() * if k >= 8 { 210.0 } else { 0.0 };
+        let pred = kf.predict(&est, T).unwrap();
+        let mp = kf.predict_measurement(&pred, &meas).unwrap();
+        let innov = mp.innovation(&meas, &Vector::<1>::new(x[0])).unwrap();
+        est = mp.update(&pred, &innov.residual).unwrap();
+        let lin = StepLinearization {
+            phi: &phi,
+            gamma: &g,
+            h: &h,
+            gain: mp.gain(),
+            s_factor: mp.s_factor(),
+            residual: &innov.residual,
+        };
+        if k == 10 {
+            let c: Glrt<2, 1, 1> = glrt.clone().with_threshold(f64::MAX).unwrap();
+            assert_eq!(c.len(), glrt.len());
+            assert!(c.config().threshold() >= f64::MAX);
+            copy = Some(c);
+        }
+        let out = glrt.step(&lin).unwrap();
+        glrt.commit();
+        if let Some(c) = copy.as_mut() {
+            let o = c.step(&lin).unwrap();
+            c.commit();
+            // Same window, same statistic (bit for bit); only the decision differs.
+            assert_eq!(o.max_statistic, out.max_statistic, "step {k}");
+            assert!(o.detection.is_none() && out.detection.is_some(), "step {k}");
+        }
+    }
+}

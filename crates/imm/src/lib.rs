@@ -21,7 +21,7 @@
 //!   ([`AircraftTuning`]) and a two-point start ([`two_point_start`]); see the
 //!   [`aircraft`] module docs and docs/aircraft-imm.md.
 //! - [`ImmTrack`], [`imm_smooth`]: fixed-interval IMM smoothing (forward–backward, after
-//!   Kim 1994, expectation-correction weights of Barber 2006) with smoothed mode
+//!   Kim's 1994 pairwise form weighed by each mode's backward likelihood) with smoothed mode
 //!   probabilities; the equations and references are in [`smooth`].
 //! - Polar plots are converted with the unbiased conversion ([`unbiased_conversion`],
 //!   [`UnbiasedConversion`]) using each hypothesis' own variances.

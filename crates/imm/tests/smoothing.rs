@@ -83,7 +83,17 @@ fn paper_imm() -> Imm<Kf<PlanarModel>, 4, 3> {
     Imm::new([cv, ct(3.0), ct(-3.0)], pi).unwrap()
 }
 
-fn gimpo_campaign(weights: PairWeights) -> f64 {
+/// What one campaign measured: smoothed / filtered RMS position error of the IMM
+/// smoother, of the RTS smoother on the nearest IMM-mode sequence and on the true model,
+/// and the smoothed IMM's ANEES.
+struct Campaign {
+    ratio: f64,
+    nearest_ratio: f64,
+    true_model_ratio: f64,
+    anees: f64,
+}
+
+fn gimpo_campaign(weights: PairWeights) -> Campaign {
     // Seed 000's scene (crates/scenarios/src/gimpo.rs): the Table 1 approach from
     // (−60 km, −20 km) at 90 m/s, a rotating beam of period 5 s at the origin, σr = 70 m,
     // σθ = 0.08°; the paper's IMM with the true R on unbiased converted plots, two-point
@@ -129,7 +139,7 @@ fn gimpo_campaign(weights: PairWeights) -> f64 {
     let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
     // Per step: Σ NEES smoothed, Σ NEES filtered, Σ squared position error smoothed,
     // filtered, and the time.
-    let mut acc: Vec<[f64; 5]> = Vec::new();
+    let mut acc: Vec<[f64; 9]> = Vec::new();
     for run in 0..runs {
         let mut rng = run_rng(0, run);
         let plots: Vec<(f64, PolarMeasurement)> =
@@ -159,8 +169,16 @@ fn gimpo_campaign(weights: PairWeights) -> f64 {
             track.step(&imm, *t, &m, &z).unwrap();
         }
         let smoothed = track.smooth_with(weights).unwrap();
-        acc.resize(smoothed.len(), [0.0; 5]);
-        for ((s, st), a) in smoothed.iter().zip(track.steps()).zip(acc.iter_mut()) {
+        let bound_true = rts_on_sequence(&plots, &conv, &var, g, true);
+        let bound_near = rts_on_sequence(&plots, &conv, &var, g, false);
+        acc.resize(smoothed.len(), [0.0; 9]);
+        // The reference smoothers' steps are the track's (both start at the second plot).
+        for (((s, st), a), (bt, bn)) in smoothed
+            .iter()
+            .zip(track.steps())
+            .zip(acc.iter_mut())
+            .zip(bound_true.iter().zip(&bound_near))
+        {
             let x = traj.state_at(st.time()).unwrap().state_2d();
             let f = st.filtered().combined().unwrap();
             let se = |g: &Gaussian<4>| (g.mean()[0] - x[0]).powi(2) + (g.mean()[2] - x[2]).powi(2);
@@ -169,6 +187,10 @@ fn gimpo_campaign(weights: PairWeights) -> f64 {
             a[2] += se(&s.combined);
             a[3] += se(&f);
             a[4] = st.time();
+            a[5] += se(bt);
+            a[6] += bt.mahalanobis_sq(&x);
+            a[7] += se(bn);
+            a[8] += bn.mahalanobis_sq(&x);
             let sum: f64 = s.mode_probabilities.iter().sum();
             assert!(
                 (sum - 1.0).abs() < 1e-9,
@@ -179,19 +201,28 @@ fn gimpo_campaign(weights: PairWeights) -> f64 {
     let nr = runs as f64;
     // RMS position error over t ≥ 25 % of the track (the scenario's warm-up rule).
     let (t0, t1) = (acc[0][4], acc[acc.len() - 1][4]);
-    let tail: Vec<&[f64; 5]> = acc
+    let tail: Vec<&[f64; 9]> = acc
         .iter()
         .filter(|a| a[4] >= t0 + 0.25 * (t1 - t0))
         .collect();
+    let mean = |i: usize| acc.iter().map(|a| a[i] / nr).sum::<f64>() / acc.len() as f64;
     let rms = |i: usize| (tail.iter().map(|a| a[i]).sum::<f64>() / (nr * tail.len() as f64)).sqrt();
     let (rms_s, rms_f) = (rms(2), rms(3));
+    eprintln!(
+        "bounds: RTS true model RMS {:.2} m (ratio {:.3}), ANEES {:.2}; RTS nearest IMM mode RMS {:.2} m (ratio {:.3}), ANEES {:.2}",
+        rms(5),
+        rms(5) / rms_f,
+        mean(6),
+        rms(7),
+        rms(7) / rms_f,
+        mean(8)
+    );
     let ratio = rms_s / rms_f;
     // Per-step ANEES against the two-sided 99 % interval of χ²(4 · runs) / runs.
     let band = anees_interval(4, runs as usize, 0.99).unwrap();
     let inside = |i: usize| {
         acc.iter().filter(|a| band.contains(a[i] / nr)).count() as f64 / acc.len() as f64
     };
-    let mean = |i: usize| acc.iter().map(|a| a[i] / nr).sum::<f64>() / acc.len() as f64;
     eprintln!(
         "gimpo, {weights:?} ({runs} runs, {} steps): RMS position error smoothed {rms_s:.2} m, filtered {rms_f:.2} m, ratio {ratio:.3}; \
          ANEES mean smoothed {:.2}, filtered {:.2}; steps inside the 99 % band [{:.2}, {:.2}]: smoothed {:.0} %, filtered {:.0} %",
@@ -203,22 +234,102 @@ fn gimpo_campaign(weights: PairWeights) -> f64 {
         100.0 * inside(0),
         100.0 * inside(1),
     );
-    ratio
+    // ANEES on the straight legs and in the turns (the step's time inside a Table 1 turn).
+    let split = |i: usize, turn: bool| {
+        let sel: Vec<&[f64; 9]> = acc
+            .iter()
+            .filter(|a| (true_rate(a[4]) != 0.0) == turn)
+            .collect();
+        sel.iter().map(|a| a[i] / nr).sum::<f64>() / sel.len() as f64
+    };
+    eprintln!(
+        "  ANEES straight / turns: smoothed {:.2} / {:.2}, filtered {:.2} / {:.2}, RTS nearest mode {:.2} / {:.2}, RTS true model {:.2} / {:.2}",
+        split(0, false),
+        split(0, true),
+        split(1, false),
+        split(1, true),
+        split(8, false),
+        split(8, true),
+        split(6, false),
+        split(6, true)
+    );
+    Campaign {
+        ratio,
+        nearest_ratio: rms(7) / rms_f,
+        true_model_ratio: rms(5) / rms_f,
+        anees: mean(0),
+    }
+}
+
+/// The turn rate (rad/s, 0 = straight) of Table 1 at time `t`.
+fn true_rate(t: f64) -> f64 {
+    let mut end = 0.0;
+    for &(d, w) in &SEGMENTS {
+        end += d;
+        if t < end {
+            return w.to_radians();
+        }
+    }
+    0.0
+}
+
+/// The RTS smoother of one Kalman filter whose model over each interval is given by the
+/// truth: `exact` = the true turn rate at the interval's midpoint (σv 0.1 m/s²; a
+/// smoother that knows the manoeuvres), otherwise the nearest mode of the paper's IMM (CV
+/// on the straight legs, CT ±3 deg/s of the turn's sign, σv as the IMM's).
+fn rts_on_sequence(
+    plots: &[(f64, PolarMeasurement)],
+    conv: &UnbiasedConversion<4>,
+    var: &NoiseVariances,
+    g: Gaussian<4>,
+    exact: bool,
+) -> Vec<Gaussian<4>> {
+    let mut rt = RtsTrack::new(plots[1].0, g).unwrap();
+    let mut prev = plots[1].0;
+    for (t, pl) in &plots[2..] {
+        let w = true_rate(0.5 * (prev + t));
+        let model = match (exact, w == 0.0) {
+            (_, true) => PlanarModel::from(Cv2D::discrete(0.1).unwrap()),
+            (true, false) => PlanarModel::from(CoordinatedTurn::new(w, 0.1).unwrap()),
+            (false, false) => PlanarModel::from(
+                CoordinatedTurn::from_degrees_per_second(3.0_f64.copysign(w), 0.5).unwrap(),
+            ),
+        };
+        let (m, z) = conv.convert(pl, var).unwrap();
+        rt.step(&Kf::new(model), *t, &m, &z).unwrap();
+        prev = *t;
+    }
+    rt.smooth().unwrap()
 }
 
 #[test]
 fn smoothed_imm_on_the_gimpo_trajectory() {
-    let ec = gimpo_campaign(PairWeights::ExpectationCorrection);
-    let kim = gimpo_campaign(PairWeights::Kim);
+    let bl = gimpo_campaign(PairWeights::BackwardLikelihood);
+    let ec = gimpo_campaign(PairWeights::ExpectationCorrection).ratio;
+    let kim = gimpo_campaign(PairWeights::Kim).ratio;
     eprintln!(
-        "smoothed / filtered RMS position error: expectation correction {ec:.3}, Kim {kim:.3}"
+        "smoothed / filtered RMS position error: backward likelihood {:.3}, expectation correction {ec:.3}, Kim {kim:.3}; \
+         RTS on the nearest IMM-mode sequence {:.3}, RTS on the true model {:.3}",
+        bl.ratio, bl.nearest_ratio, bl.true_model_ratio
     );
-    // What holds (measured 0.952 for expectation correction, 4.12 for Kim's weights): the
-    // smoothed error is below the filtered one. The issue's goal (≤ 0.6) is NOT met, and
-    // the smoothed ANEES (7.2) is NOT inside its band; both are reported, not asserted
-    // (docs/smoothing.md).
-    assert!(ec < 1.0, "smoothed / filtered RMS {ec}");
-    assert!(ec < kim, "expectation correction {ec} vs Kim {kim}");
+    // What holds (measured: 0.653 for the backward-likelihood pass, 0.952 expectation
+    // correction, 4.12 Kim): the smoothed error is below the filtered one and below the
+    // other weightings'. The issue's goal (≤ 0.6) is NOT met, and the smoothed ANEES (7.0)
+    // is NOT inside its band; both are reported, not asserted (docs/smoothing.md). Why:
+    // an RTS smoother told the true sequence of the IMM's own modes (CV on the legs, CT
+    // ±3 deg/s in the turns) reaches 0.643 (measured), so no smoother with this model set
+    // and one mode per step does much better; asserted: within 5 % of it, and that
+    // reference above the goal. Only the true turn rates give 0.426 (measured).
+    assert!(bl.ratio < 1.0, "smoothed / filtered RMS {}", bl.ratio);
+    assert!(bl.ratio < ec && ec < kim, "{} vs {ec} vs {kim}", bl.ratio);
+    assert!(
+        bl.ratio < 1.05 * bl.nearest_ratio,
+        "{} vs {}",
+        bl.ratio,
+        bl.nearest_ratio
+    );
+    assert!(bl.nearest_ratio > 0.6 && bl.true_model_ratio < 0.6);
+    assert!(bl.anees.is_finite());
 }
 
 #[test]

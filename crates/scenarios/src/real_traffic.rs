@@ -25,6 +25,7 @@ mod params;
 mod radar;
 mod report;
 mod setup;
+mod smooth;
 mod truth;
 
 pub(crate) use setup::Setup;

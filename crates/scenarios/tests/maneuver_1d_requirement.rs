@@ -83,7 +83,9 @@ fn detection_requirement_of_issue_17_over_200_runs() {
     // case 2's switch-off at 3.8 s (95th pct 1.00 s: 10 of 200 runs drop the input early
     // and so miss the switch, others are late), its second onset at 5.0 s (mean 0.511 s)
     // and its switch-off at 6.4 s (95th pct 0.80 s, 7 missed). Pinned here so that any
-    // change of these results (better or worse) shows and the document is updated.
+    // change of these results (better or worse) shows and the document is updated. Why:
+    // maneuver_1d_later_switches.rs (the noise-free λ after each switch given the filter's
+    // state there; with every estimate exact the second onset's derived mean is 0.517 s).
     assert_eq!(
         failed,
         [

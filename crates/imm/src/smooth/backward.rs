@@ -3,6 +3,7 @@
 use argus_core_math::Gaussian;
 use argus_filters::{SmoothError, rts_step};
 
+use super::likelihood::BackwardLikelihood;
 use super::{ImmSmoothError, ImmStep};
 use crate::MarkovMatrix;
 use crate::markov::log_sum_exp;
@@ -15,8 +16,13 @@ pub enum PairWeights {
     /// Barber (2006), expectation correction with the mean approximation: the pair weight
     /// also carries how well mode `i`'s prediction through model `j` explains mode `j`'s
     /// smoothed mean, `N(x̂ʲₖ₊₁|ₙ; x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ)`.
-    #[default]
     ExpectationCorrection,
+    /// The backward likelihood of mode `j` (the ratio of its smoothed estimate to the IMM's
+    /// mode-`j` prediction, [`super::likelihood`]) weighs each pair by
+    /// `∫ N(x; x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ) βⱼ(x) dx` and gives the pair's own smoothed estimate at
+    /// `k + 1`, towards which the pair's RTS step goes (module docs, eqs (1b)–(5b)).
+    #[default]
+    BackwardLikelihood,
 }
 
 /// The smoothed IMM estimate of one step.
@@ -97,21 +103,62 @@ fn step_back<const N: usize, const R: usize>(
     let log_pi = pi.log_matrix();
     let log_mu = here.filtered().log_mode_probabilities();
     let filtered = here.filtered().modes();
-    // Eq (1): ln bᵢ|ⱼ = ln πᵢⱼ + ln μᵢₖ [+ ln N(x̂ʲₖ₊₁|ₙ; x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ)] − normaliser;
+    let log_cbar = tr.log_predicted_probabilities();
+    let backward = |source| ImmSmoothError::Backward {
+        step: k,
+        mode: None,
+        source,
+    };
+    // The smoothed estimate at k + 1 each pair's RTS step goes towards: mode j's (Kim,
+    // expectation correction) or the pair's own (backward likelihood).
+    let mut targets = [smoothed_next.modes; R];
+    // Eq (1): ln bᵢ|ⱼ = ln πᵢⱼ + ln μᵢₖ [+ ln N(x̂ʲₖ₊₁|ₙ; x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ)] − normaliser
+    // (eq (1b): + ln ∫ N(x; x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ) βⱼ(x) dx);
     // eq (2′): ln P(i, j | Z₁:ₙ) = ln bᵢ|ⱼ + ln μʲₖ₊₁|ₙ.
     let mut joint = [[f64::NEG_INFINITY; R]; R];
     for j in 0..R {
         let ls = smoothed_next.log_mode_probabilities[j];
-        if ls == f64::NEG_INFINITY {
+        if ls == f64::NEG_INFINITY || log_cbar[j] == f64::NEG_INFINITY {
             continue;
         }
         let mut col = [f64::NEG_INFINITY; R];
         for (i, c) in col.iter_mut().enumerate() {
             *c = log_pi[(i, j)] + log_mu[i];
-            if weights == PairWeights::ExpectationCorrection && *c > f64::NEG_INFINITY {
-                *c += tr.pairs()[i][j]
-                    .predicted()
-                    .log_pdf(smoothed_next.modes[j].mean());
+        }
+        match weights {
+            PairWeights::Kim => {}
+            PairWeights::ExpectationCorrection => {
+                for (i, c) in col.iter_mut().enumerate() {
+                    if *c > f64::NEG_INFINITY {
+                        *c += tr.pairs()[i][j]
+                            .predicted()
+                            .log_pdf(smoothed_next.modes[j].mean());
+                    }
+                }
+            }
+            PairWeights::BackwardLikelihood => {
+                // The IMM's mode-j prediction: the pairs' predictions mixed with the
+                // forward mixing probabilities μᵢ|ⱼ = πᵢⱼ μᵢ / μ̄ⱼ (for linear models the
+                // prediction of the mixed estimate, seed 000 eqs (1)–(3)).
+                let mix = col.map(|c| (c - log_cbar[j]).exp());
+                let preds: [Gaussian<N>; R] =
+                    core::array::from_fn(|i| *tr.pairs()[i][j].predicted());
+                let predicted = Gaussian::mixture(&mix, &preds).map_err(backward)?;
+                let beta = BackwardLikelihood::new(&smoothed_next.modes[j], &predicted)
+                    .map_err(backward)?;
+                for (i, c) in col.iter_mut().enumerate() {
+                    if *c > f64::NEG_INFINITY {
+                        let (post, log_l) = beta.posterior(&preds[i]).map_err(|source| {
+                            ImmSmoothError::Backward {
+                                step: k,
+                                mode: Some(i),
+                                source,
+                            }
+                        })?;
+                        targets[i][j] = post;
+                        *c += log_l;
+                    }
+                }
             }
         }
         let norm = log_sum_exp(&col);
@@ -137,12 +184,13 @@ fn step_back<const N: usize, const R: usize>(
         let mut parts = [filtered[i]; R];
         for (j, (part, wj)) in parts.iter_mut().zip(&w).enumerate() {
             if *wj > 0.0 {
-                *part = rts_step(&filtered[i], &tr.pairs()[i][j], &smoothed_next.modes[j])
-                    .map_err(|source| ImmSmoothError::Backward {
+                *part = rts_step(&filtered[i], &tr.pairs()[i][j], &targets[i][j]).map_err(
+                    |source| ImmSmoothError::Backward {
                         step: k,
                         mode: Some(i),
                         source,
-                    })?;
+                    },
+                )?;
             }
         }
         *out = Gaussian::mixture(&w, &parts).map_err(|source| ImmSmoothError::Backward {

@@ -118,7 +118,7 @@ fn rows(p: &Params, clip: Option<f64>, st: &Sums) -> Result<Vec<Row>, ScenarioEr
         smooth / true_rms,
         "-",
         format!(
-            "fixed-interval IMM smoother (Kim 1994, expectation-correction weights): {smooth:.2} m against {true_rms:.2} m; t ≥ {:.0} % of the flight",
+            "fixed-interval IMM smoother (Kim 1994 pairs, backward-likelihood weights): {smooth:.2} m against {true_rms:.2} m; t ≥ {:.0} % of the flight",
             WARMUP * 100.0
         ),
     ));

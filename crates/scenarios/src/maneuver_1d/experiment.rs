@@ -17,6 +17,8 @@
 //! # References
 //! Lee & Kim (1987), seed 001, §5.1 and Figs. 3–4; SPEC.md section 001 ("maneuver-1d").
 
+pub mod after_switch;
+
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Kf};
 use argus_motion_models::{Cv1D, CvNoise};

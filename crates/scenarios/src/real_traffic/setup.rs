@@ -10,6 +10,7 @@ use argus_tracker::{
 use serde::{Deserialize, Serialize};
 
 use super::radar::{self, Radar};
+use super::smooth::{SmoothedTruth, nees_against, smoothed_track, smoothed_truth};
 use super::truth::{self, Path};
 use crate::error::{ParamProblem, ScenarioError};
 use crate::params::Params;
@@ -46,6 +47,10 @@ pub(crate) struct Setup {
     pub(crate) truth_extended: Vec<TruthPath>,
     /// The cleaning's counts (records, aircraft, drops per rule).
     pub(crate) cleaning: argus_adsb::CleaningReport,
+    /// The covered truth RTS-smoothed, for the NEES (`super::smooth`).
+    pub(crate) truth_smoothed: Vec<SmoothedTruth>,
+    /// The scorer's assignment cutoff (m), also the NEES's track-to-truth cutoff.
+    pub(crate) cutoff: f64,
 }
 
 /// One configuration's score in one run.
@@ -70,6 +75,16 @@ pub(crate) struct ConfigScore {
     pub(crate) gospa_false_mean: f64,
     pub(crate) confirmed_tracks: usize,
     pub(crate) aircraft_hours: f64,
+    /// The position RMSE of the same tracks RTS-smoothed over their lives (`None` for the
+    /// IMM trackers, whose tracks cannot be smoothed: `super::smooth`).
+    #[serde(default)]
+    pub(crate) smoothed_position_rmse: Option<f64>,
+    /// `Σ NEES` of the confirmed rows' `[x, vx, y, vy]` against the smoothed truth, and
+    /// the number of rows.
+    #[serde(default)]
+    pub(crate) nees_sum: f64,
+    #[serde(default)]
+    pub(crate) nees_count: usize,
     /// Per grid time: `(t, completeness, GOSPA)`.
     pub(crate) series: Vec<(f64, Option<f64>, f64)>,
 }
@@ -137,6 +152,7 @@ impl Setup {
         })?;
         let truth = covered_truth(&paths, &radar, duration)?;
         let truth_extended = extended(&truth)?;
+        let truth_smoothed = smoothed_truth(&truth)?;
         if truth.is_empty() {
             return Err(ScenarioError::Degenerate {
                 scenario: "real-traffic",
@@ -153,6 +169,8 @@ impl Setup {
             truth,
             truth_extended,
             cleaning,
+            truth_smoothed,
+            cutoff,
         })
     }
 
@@ -201,11 +219,16 @@ impl Setup {
         let mut configs = Vec::with_capacity(self.trackers.len());
         let mut map_tracks = Vec::new();
         for (k, named) in self.trackers.iter().enumerate() {
-            let histories = track(
+            let (histories, estimates): (
+                Vec<TrackHistory>,
+                Vec<Vec<argus_core_math::Gaussian<4>>>,
+            ) = track_with_estimates(
                 &named.config,
                 &plots,
                 self.radar.period * named.config.sector_fraction,
-            )?;
+            )?
+            .into_iter()
+            .unzip();
             if let Ok(path) = std::env::var("ARGUS_DEBUG_TRACKS") {
                 let mut t = String::from("t,track,status,x,vx,y,vy\n");
                 for h in &histories {
@@ -240,6 +263,25 @@ impl Setup {
                 }
             }
             let score = self.scorer.score(&histories, &self.truth)?;
+            let smoothed_position_rmse = match named.config.estimator {
+                EstimatorConfig::Kf | EstimatorConfig::Ekf => {
+                    let kf = argus_filters::Kf::new(argus_motion_models::Cv2D::discrete(
+                        named.config.sigma_a,
+                    )?);
+                    let smoothed = histories
+                        .iter()
+                        .zip(&estimates)
+                        .map(|(h, e)| smoothed_track(&kf, h, e))
+                        .collect::<Result<Vec<_>, _>>()?;
+                    self.scorer
+                        .score(&smoothed, &self.truth)?
+                        .summary
+                        .position_rmse
+                }
+                _ => None,
+            };
+            let (nees_sum, nees_count) =
+                nees_against(&histories, &estimates, &self.truth_smoothed, self.cutoff);
             let extended = self.scorer.score(&histories, &self.truth_extended)?;
             let s = &score.summary;
             configs.push(ConfigScore {
@@ -264,6 +306,9 @@ impl Setup {
                     .filter(|h| h.rows().iter().any(|r| r.confirmed))
                     .count(),
                 aircraft_hours: s.aircraft_hours,
+                smoothed_position_rmse,
+                nees_sum,
+                nees_count,
                 series: score
                     .series
                     .iter()
@@ -386,14 +431,15 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
 }
 
 /// Runs `config` over `plots` (fed a `chunk` of seconds at a time, as a stream) and
-/// returns every track's rows: its state each time it was updated or missed.
-pub(crate) fn track(
+/// returns every track's rows: its state each time it was updated or missed, with each
+/// row's estimate (mean and covariance) for smoothing and the NEES.
+pub(crate) fn track_with_estimates(
     config: &TrackerConfig,
     plots: &[Plot],
     chunk: f64,
-) -> Result<Vec<TrackHistory>, ScenarioError> {
+) -> Result<Vec<(TrackHistory, Vec<argus_core_math::Gaussian<4>>)>, ScenarioError> {
     let mut tracker = Tracker::new(config.clone())?;
-    let mut rows: std::collections::BTreeMap<u64, Vec<TrackRow>> =
+    let mut rows: std::collections::BTreeMap<u64, Vec<(TrackRow, argus_core_math::Gaussian<4>)>> =
         std::collections::BTreeMap::new();
     let mut record = |tracker: &mut Tracker| {
         for tr in tracker.tracks().iter().chain(tracker.deleted()) {
@@ -401,18 +447,21 @@ pub(crate) fn track(
             let r = rows.entry(tr.id().0).or_default();
             // A deleted track's last row (not confirmed: the track is gone from then on,
             // as the tracks CSV's `deleted` row says).
-            if !deleted && r.last().is_some_and(|l| l.t >= tr.time()) {
+            if !deleted && r.last().is_some_and(|l| l.0.t >= tr.time()) {
                 continue;
             }
             let x = tr.estimate().mean();
-            r.push(TrackRow {
-                t: tr.time(),
-                confirmed: tr.status() == TrackStatus::Confirmed,
-                x: x[0],
-                vx: x[1],
-                y: x[2],
-                vy: x[3],
-            });
+            r.push((
+                TrackRow {
+                    t: tr.time(),
+                    confirmed: tr.status() == TrackStatus::Confirmed,
+                    x: x[0],
+                    vx: x[1],
+                    y: x[2],
+                    vy: x[3],
+                },
+                *tr.estimate(),
+            ));
         }
         tracker.take_deleted();
     };
@@ -432,7 +481,11 @@ pub(crate) fn track(
     record(&mut tracker);
     rows.into_iter()
         .filter(|(_, r)| !r.is_empty())
-        .map(|(id, r)| TrackHistory::new(id.to_string(), r).map_err(ScenarioError::from))
+        .map(|(id, r)| {
+            let (rows, estimates): (Vec<TrackRow>, Vec<_>) = r.into_iter().unzip();
+            let h = TrackHistory::new(id.to_string(), rows).map_err(ScenarioError::from)?;
+            Ok((h, estimates))
+        })
         .collect()
 }
 
