@@ -94,6 +94,32 @@ pub enum CliError {
         /// What failed.
         message: String,
     },
+    /// A packet capture that cannot be read at all (its header, its link type).
+    #[error("{file}: {source}")]
+    Capture {
+        /// The capture.
+        file: PathBuf,
+        /// Why.
+        source: argus_capture::CaptureError,
+    },
+    /// An ASTERIX plot of a radar (SAC/SIC) that the configuration does not have.
+    #[error(
+        "{file}: ASTERIX record {record}: I048/010 SAC {sac} SIC {sic} is no [[sensor]] of {config} (known SAC/SIC: {known})"
+    )]
+    UnknownSource {
+        /// The capture or block file.
+        file: PathBuf,
+        /// 1-based number of the record among the file's decoded records.
+        record: u64,
+        /// System area code.
+        sac: u8,
+        /// System identification code.
+        sic: u8,
+        /// The configuration.
+        config: PathBuf,
+        /// The configuration's sensors as `SAC/SIC`.
+        known: String,
+    },
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {

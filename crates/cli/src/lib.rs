@@ -16,8 +16,10 @@ macro_rules! say {
     }};
 }
 
+mod asterix_io;
 mod campaign_plan;
 mod campaign_scan;
+mod convert;
 mod error;
 mod estimator;
 mod merge_error;
@@ -45,6 +47,7 @@ use clap::{Parser, Subcommand};
 use argus_filters::Lag;
 use argus_scenarios::{Params, Scenario};
 
+use crate::asterix_io::encode::{Container, Sweep};
 use crate::progress::Bar;
 use crate::summary::{RunInfo, table_text};
 
@@ -102,7 +105,8 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
-    /// Writes one run's plots (and truth) of a scenario as CSV.
+    /// Writes one run's plots (and truth) of a scenario as CSV, or as ASTERIX CAT048 +
+    /// CAT034 (`--format asterix`, or an output ending `.pcap` or `.ast`).
     Simulate {
         /// Scenario name.
         scenario: String,
@@ -121,13 +125,44 @@ enum Command {
         /// Parameter override `key=value` (repeatable).
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
+        /// Plot file format: `csv`, or `asterix` (a pcap capture of CAT048 reports and,
+        /// for a rotating radar, CAT034 north markers and sector crossings; raw blocks
+        /// when the output ends `.ast`). Default: by the output's extension.
+        #[arg(long, value_enum)]
+        format: Option<PlotFormat>,
+        /// ASTERIX: the radar's revolution period (s) for the CAT034 messages (default:
+        /// the scenario's `period` parameter when it has `period` and `north_time`).
+        #[arg(long, value_parser = positive_seconds)]
+        revolution_period: Option<f64>,
+        /// ASTERIX: sector crossings per revolution (the north marker is one).
+        #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=256))]
+        sectors: u32,
+    },
+    /// Converts between ASTERIX (pcap, pcapng or raw blocks, known by content) and the
+    /// CSV layouts (docs/FORMATS.md): CAT048 (+ CAT034) ↔ polar plot CSV, CAT062 ↔ tracks
+    /// CSV.
+    Convert {
+        /// Input file (format by content).
+        input: PathBuf,
+        /// Output file (format by extension: `.csv`, `.pcap`, `.ast`).
+        output: PathBuf,
+        /// CSV → ASTERIX: revolution period (s) of the radar, for CAT034 messages.
+        #[arg(long, value_parser = positive_seconds)]
+        revolution_period: Option<f64>,
+        /// CSV → ASTERIX: a time the beam points north (s).
+        #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+        north_time: f64,
+        /// CSV → ASTERIX: sector crossings per revolution.
+        #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=256))]
+        sectors: u32,
     },
     /// Runs a configured estimator over a plot file, in time order.
     Track {
         /// Estimator and sensor configuration (TOML).
         #[arg(long)]
         config: PathBuf,
-        /// Plot file (CSV).
+        /// Plot file: CSV, or ASTERIX CAT048 (+ CAT034) as pcap, pcapng or raw blocks
+        /// (known by content).
         #[arg(long)]
         plots: PathBuf,
         /// Track file to write (CSV).
@@ -165,6 +200,15 @@ enum Command {
         #[arg(long, default_value_t = 1000.0)]
         cutoff: f64,
     },
+}
+
+/// `argus simulate --format`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+enum PlotFormat {
+    /// The plot CSV.
+    Csv,
+    /// ASTERIX CAT048 + CAT034.
+    Asterix,
 }
 
 #[derive(Debug, Subcommand)]
@@ -370,13 +414,27 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             out,
             truth,
             set,
+            format,
+            revolution_period,
+            sectors,
         } => {
             let sc = find(&scenario)?;
             let params = Params::from_settings(&sc.params(), &set)?;
             let truth_path = truth.unwrap_or_else(|| out.with_extension("truth.csv"));
+            let container = match (format, Container::of(&out)) {
+                (Some(PlotFormat::Csv), _) | (None, None) => None,
+                (_, Some(c)) => Some(c),
+                (Some(PlotFormat::Asterix), None) => Some(Container::Pcap),
+            };
+            let asterix = container.map(|c| {
+                (
+                    c,
+                    asterix_io::encode::sweep(&params, revolution_period, sectors),
+                )
+            });
             if let Some(sim) = sc.simulated(&params, seed, run) {
                 let sim = sim?;
-                write_plot_file(&out, &sim.plots)?;
+                write_plot_file(&out, &sim.plots, asterix)?;
                 let mut t_text = String::from("t,target,x,vx,y,vy\n");
                 for r in &sim.truth {
                     t_text.push_str(&format!(
@@ -396,7 +454,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let (scene, sensors) = sc.scene(&params)?;
             let plots =
                 argus_sim::generate_plots(&scene, &sensors, &mut argus_sim::run_rng(seed, run))?;
-            write_plot_file(&out, &plots)?;
+            write_plot_file(&out, &plots, asterix)?;
             // Truth at every plot time of each target, in the papers' 2-D order.
             let mut t_text = String::from("t,target,x,vx,y,vy,z,vz\n");
             let mut times: Vec<f64> = plots.iter().map(|p| p.plot.time()).collect();
@@ -489,6 +547,23 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             }
             say!("wrote {} ({n} track points)", out.display());
         }
+        Command::Convert {
+            input,
+            output,
+            revolution_period,
+            north_time,
+            sectors,
+        } => {
+            let sweep = revolution_period.map(|period| Sweep {
+                period,
+                north_time,
+                clockwise: true,
+                sectors,
+            });
+            for line in convert::run(&input, &output, sweep)? {
+                say!("{line}");
+            }
+        }
         Command::Score {
             tracks,
             truth,
@@ -518,12 +593,22 @@ pub fn run_command_line() -> ExitCode {
     }
 }
 
-/// Writes `plots` as one plot file at `out` (atomically).
+/// Writes `plots` as one plot file at `out` (atomically): CSV, or with `asterix` as
+/// CAT048 (+ CAT034 with a sweep) in that container.
 ///
 /// # Errors
-/// [`CliError::Usage`] when plots of different layouts would share the file;
-/// [`CliError::Io`].
-fn write_plot_file(out: &Path, plots: &[argus_sim::LabelledPlot]) -> Result<(), CliError> {
+/// [`CliError::Usage`] when plots of different layouts would share the file, or a plot
+/// ASTERIX cannot carry; [`CliError::Io`].
+fn write_plot_file(
+    out: &Path,
+    plots: &[argus_sim::LabelledPlot],
+    asterix: Option<(Container, Option<Sweep>)>,
+) -> Result<(), CliError> {
+    if let Some((container, sweep)) = asterix {
+        let plain: Vec<argus_sensors::Plot> = plots.iter().map(|p| p.plot).collect();
+        let enc = asterix_io::encode::encode_plots(&plain, sweep.as_ref())?;
+        return asterix_io::encode::write(out, &enc, container);
+    }
     let (text, skipped) = plotfile::write_text(plots);
     if skipped > 0 {
         return Err(CliError::Usage(format!(

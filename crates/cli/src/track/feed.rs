@@ -94,6 +94,34 @@ impl Feed {
         Ok(())
     }
 
+    /// Time has reached `t` with no plot (an ASTERIX CAT034 message, [`super::source`]):
+    /// the held plots handed in, the sectors ended by `t` concluded, then
+    /// [`Tracker::advance_to`] `t`.
+    ///
+    /// # Errors
+    /// [`CliError::Input`] for a time the tracker refuses (before one it processed).
+    pub(super) fn advance(
+        &mut self,
+        tracker: &mut Tracker,
+        tally: &mut Tally<'_>,
+        files: &Files<'_>,
+        t: f64,
+    ) -> Result<(), CliError> {
+        self.conclude(tracker, tally, files)?;
+        let at = |e: TrackerError| plot_error(files, &[], e);
+        while let Some(end) = tracker.next_sector_end()
+            && end <= t
+        {
+            for r in &tracker.advance_to(end).map_err(at)? {
+                tally.record(tracker, r);
+            }
+        }
+        for r in &tracker.advance_to(t).map_err(at)? {
+            tally.record(tracker, r);
+        }
+        Ok(())
+    }
+
     /// The end of the plots: the held ones handed in and, with a rotating sensor, the
     /// open sectors concluded ([`Tracker::flush`]).
     ///

@@ -27,6 +27,8 @@ pub(super) enum Job {
 #[derive(Debug, Clone)]
 pub(super) struct Loaded {
     pub(super) job: Job,
+    /// The checked sensors (for an ASTERIX plot file's SAC/SIC).
+    pub(super) sensors: Vec<Sensor>,
     pub(super) reference: Option<Reference>,
     /// `(sensor, γ)` of each geodetic site whose own north is not the reference
     /// frame's ([`Sensor::grid_rotation`]).
@@ -67,6 +69,7 @@ pub(super) fn load_all(path: &Path) -> Result<Loaded, CliError> {
         .map(|s| (s.id, s.grid_rotation))
         .collect();
     let estimator = spec::estimator(src, &file.estimator)?;
+    let all = sensors.clone();
     let job = match &file.tracker {
         None => Job::Single { sensors, estimator },
         Some(table) => Job::Multi(tracker_config::build(
@@ -75,6 +78,7 @@ pub(super) fn load_all(path: &Path) -> Result<Loaded, CliError> {
     };
     Ok(Loaded {
         job,
+        sensors: all,
         reference,
         grid_rotations,
     })

@@ -21,6 +21,7 @@ mod single;
 mod single_aircraft;
 mod single_imm;
 mod smooth;
+mod source;
 mod spec;
 mod start;
 mod stream;
@@ -37,7 +38,8 @@ use crate::error::CliError;
 use crate::output::write_atomic;
 use crate::plotfile;
 
-/// Runs `argus track`: the configuration at `config` over the plot file `plots_path`,
+/// Runs `argus track`: the configuration at `config` over the plot file `plots_path`
+/// (CSV, or ASTERIX known by content: [`source`]),
 /// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`),
 /// with the smoothed columns when `smoothing` is given. Returns the number of rows written
 /// and the summary's path (multi-target only).
@@ -53,12 +55,15 @@ pub fn run(
 ) -> Result<(usize, Option<PathBuf>), CliError> {
     let loaded = job::load_all(config)?;
     let reference = loaded.reference.as_ref();
+    // `None` for CSV, which is then read as before (streamed for the tracker).
+    let asterix = source::read(plots_path, config, &loaded.sensors)?;
     match &loaded.job {
         job::Job::Single { sensors, estimator } => {
-            let plots: Vec<_> = plotfile::read(plots_path)?
-                .into_iter()
-                .map(|p| loaded.to_reference(p))
-                .collect();
+            let plots = match &asterix {
+                Some(a) => a.plots.clone(),
+                None => plotfile::read(plots_path)?,
+            };
+            let plots: Vec<_> = plots.into_iter().map(|p| loaded.to_reference(p)).collect();
             let ctx = start::Ctx {
                 config,
                 plots_path,
@@ -72,16 +77,28 @@ pub fn run(
             Ok((n, None))
         }
         job::Job::Multi(m) => {
-            let files = multi::Files {
+            let mut m = m.clone();
+            let mut files = multi::Files {
                 config,
                 plots: plots_path,
                 out,
                 reference,
                 smoothing,
+                markers: &[],
             };
-            let plots =
-                plotfile::PlotReader::open(plots_path)?.map(|p| p.map(|p| loaded.to_reference(p)));
-            let (n, summary) = multi::run(m, &files, plots)?;
+            let (n, summary) = match &asterix {
+                Some(a) => {
+                    multi::set_rotations(&mut m, &a.rotations, &loaded.grid_rotations);
+                    files.markers = &a.markers;
+                    let plots = a.plots.iter().map(|p| Ok(loaded.to_reference(*p)));
+                    multi::run(&m, &files, plots)?
+                }
+                None => {
+                    let plots = plotfile::PlotReader::open(plots_path)?
+                        .map(|p| p.map(|p| loaded.to_reference(p)));
+                    multi::run(&m, &files, plots)?
+                }
+            };
             Ok((n, Some(summary)))
         }
     }

@@ -33,6 +33,32 @@ pub(super) struct Files<'a> {
     pub(super) reference: Option<&'a Reference>,
     /// `--smooth` / `--smooth-lag` ([`super::multi_smooth`]).
     pub(super) smoothing: Option<Smoothing>,
+    /// Times the tracker advances to with no plot (an ASTERIX file's CAT034 messages,
+    /// [`super::source`]), in order.
+    pub(super) markers: &'a [f64],
+}
+
+/// Gives the sensors the rotations an ASTERIX file's CAT034 messages state (the
+/// configured direction kept; a geodetic site's `north_time` moved by its grid rotation
+/// `γ`, as a configured one is, [`super::spec::turned`]).
+pub(super) fn set_rotations(
+    m: &mut MultiTarget,
+    rotations: &[super::source::MessageRotation],
+    grid_rotations: &[(u32, f64)],
+) {
+    for r in rotations {
+        if let Some(s) = m.config.sensors.iter_mut().find(|s| s.id.0 == r.sensor) {
+            let direction = s.rotation.map(|x| x.direction).unwrap_or_default();
+            let gamma = grid_rotations
+                .iter()
+                .find(|(id, _)| *id == r.sensor)
+                .map_or(0.0, |(_, g)| *g);
+            let stated = argus_tracker::Rotation::clockwise(r.period)
+                .with_direction(direction)
+                .with_north_time(r.north_time);
+            s.rotation = Some(super::spec::turned(stated, gamma));
+        }
+    }
 }
 
 /// The tracks CSV's columns for a configuration: the IMMs add the mode probabilities,
@@ -276,12 +302,20 @@ pub(super) fn run(
     let mut tally = Tally::new(&mut out, recorded.as_mut());
     let mut feed = Feed::new(c);
     let mut n_plots = 0;
+    let mut markers = files.markers.iter().copied().peekable();
     for p in plots {
-        feed.push(&mut tracker, &mut tally, files, &p?)?;
+        let p = p?;
+        while let Some(m) = markers.next_if(|m| *m <= p.time()) {
+            feed.advance(&mut tracker, &mut tally, files, m)?;
+        }
+        feed.push(&mut tracker, &mut tally, files, &p)?;
         n_plots += 1;
         if tally.out.pending() >= FLUSH_BYTES {
             tally.out.write_to(&mut file)?;
         }
+    }
+    for m in markers {
+        feed.advance(&mut tracker, &mut tally, files, m)?;
     }
     feed.finish(&mut tracker, &mut tally, files)?;
     let (scans, assigned, mut counts) = (tally.scans, tally.assigned, tally.counts);

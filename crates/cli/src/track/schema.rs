@@ -40,7 +40,7 @@ pub(super) struct ReferenceTable {
 /// A `[[sensor]]`: id and position (`[x, y]` or `[x, y, z]`, or a WGS-84 `latitude,
 /// longitude, altitude` with a `[reference]`); polar sensors also their noise, spherical
 /// ones also the elevation noise; a rotating radar its revolution period, direction and
-/// north time (for the multi-target tracker).
+/// north time (for the multi-target tracker); a radar of an ASTERIX capture its SAC/SIC.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SensorTable {
@@ -55,6 +55,10 @@ pub(super) struct SensorTable {
     pub(super) revolution_period: Option<Spanned<f64>>,
     pub(super) rotation: Option<Spanned<RotationKind>>,
     pub(super) north_time: Option<Spanned<f64>>,
+    /// ASTERIX data source (I048/010): system area code, with `sic`.
+    pub(super) sac: Option<Spanned<u8>>,
+    /// ASTERIX data source: system identification code, with `sac`.
+    pub(super) sic: Option<Spanned<u8>>,
 }
 
 /// `rotation` of a rotating `[[sensor]]`.

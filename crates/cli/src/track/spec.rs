@@ -28,6 +28,8 @@ pub(super) struct Sensor {
     /// checks its values; the single-target estimators take each plot at its time), in
     /// the reference frame: a geodetic site's `north_time` is moved by `γ` (below).
     pub(super) rotation: Option<Rotation>,
+    /// Its ASTERIX data source (`sac`, `sic`; default `256 · SAC + SIC = id`).
+    pub(super) asterix: Option<argus_asterix::DataSource>,
     /// `γ` (rad): a geodetic site's own east axis from the reference frame's, by which
     /// its plots' azimuths are turned ([`super::geo::sensor_position`]); 0 for a sensor
     /// given by `position`.
@@ -147,6 +149,7 @@ pub(super) fn sensors(
             sigma_elevation,
             rotation: rotation(src, id, s)?.map(|r| turned(r, grid_rotation)),
             grid_rotation,
+            asterix: super::source::data_source(src, id, s)?,
         });
     }
     Ok(sensors)
@@ -214,7 +217,7 @@ fn rotation(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<Rotation
 /// the site's north, the reference frame's azimuth `π/2 + γ`, at `north_time`, so in the
 /// reference frame it points at `π/2` when it has turned by `−γ` more (clockwise: at
 /// `north_time + γ P / 2π`; counter-clockwise: `north_time − γ P / 2π`).
-fn turned(r: Rotation, gamma: f64) -> Rotation {
+pub(super) fn turned(r: Rotation, gamma: f64) -> Rotation {
     let shift = gamma * r.period / std::f64::consts::TAU;
     let north_time = match r.direction {
         RotationDirection::Clockwise => r.north_time + shift,

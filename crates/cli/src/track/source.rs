@@ -1,0 +1,169 @@
+//! The plot file of `argus track`, known by content: the plot CSV, or ASTERIX (a pcap
+//! or pcapng capture of UDP, or raw blocks) whose CAT048 reports become polar plots of
+//! the `[[sensor]]` with their SAC/SIC and whose CAT034 messages drive the rotating
+//! radar's sectors (`docs/FORMATS.md`, "ASTERIX").
+//!
+//! - A `[[sensor]]` is matched by its `sac`, `sic` keys, or else by `id = 256 · SAC +
+//!   SIC`. A CAT048 report of a SAC/SIC no sensor has is an error naming it
+//!   ([`CliError::UnknownSource`]): a capture of several radars needs each of them
+//!   configured (CAT034 messages of other radars are ignored).
+//! - A radar's CAT034 messages give its rotation when they hold an I034/041 period and a
+//!   north marker: the period, and `north_time` the phase of the first north marker; the
+//!   configured `rotation` direction is kept (clockwise by default). They replace a
+//!   configured `revolution_period` / `north_time` (the radar's own word), and make a
+//!   sensor without one a rotating radar.
+//! - Every north-marker or sector-crossing time is a point the tracker advances to
+//!   ([`argus_tracker::Tracker::advance_to`]): sectors that ended by then are processed
+//!   even when no plot follows.
+//! - Errors about a plot name the ASTERIX record's 1-based number where a CSV error names
+//!   the line.
+
+use std::path::Path;
+
+use argus_asterix::DataSource;
+use argus_sensors::{Plot, SensorId};
+
+use super::schema::{SensorTable, Source};
+use super::spec::Sensor;
+use crate::asterix_io::plots::{radar_data, rotation_of};
+use crate::asterix_io::{self, source_of};
+use crate::error::CliError;
+use crate::plotfile::FilePlot;
+
+/// A radar's rotation read from its CAT034 messages.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct MessageRotation {
+    /// The configured sensor's id.
+    pub(super) sensor: u32,
+    /// I034/041 (s).
+    pub(super) period: f64,
+    /// The first north marker's phase in `[0, period)` (s).
+    pub(super) north_time: f64,
+}
+
+/// What an ASTERIX plot file gives the tracker.
+#[derive(Debug, Clone, Default)]
+pub(super) struct PlotSource {
+    /// The plots, in time order.
+    pub(super) plots: Vec<FilePlot>,
+    /// CAT034 message times of the configured radars, in order.
+    pub(super) markers: Vec<f64>,
+    /// Rotations from CAT034.
+    pub(super) rotations: Vec<MessageRotation>,
+}
+
+/// A `[[sensor]]`'s `sac` and `sic`: both or neither.
+///
+/// # Errors
+/// [`CliError::Input`] at the one given without the other.
+pub(super) fn data_source(
+    src: Source<'_>,
+    id: u32,
+    s: &SensorTable,
+) -> Result<Option<DataSource>, CliError> {
+    match (&s.sac, &s.sic) {
+        (Some(sac), Some(sic)) => Ok(Some(DataSource {
+            sac: *sac.get_ref(),
+            sic: *sic.get_ref(),
+        })),
+        (None, None) => Ok(None),
+        (Some(sac), None) => Err(src.at(sac, "sic", format!("sensor {id}: sac needs sic"))),
+        (None, Some(sic)) => Err(src.at(sic, "sac", format!("sensor {id}: sic needs sac"))),
+    }
+}
+
+/// The data source a sensor answers to: its keys, or `id = 256 · SAC + SIC`.
+fn answers_to(s: &Sensor) -> Option<DataSource> {
+    s.asterix.or_else(|| source_of(s.id))
+}
+
+fn show(d: DataSource) -> String {
+    format!("{}/{}", d.sac, d.sic)
+}
+
+/// Reads the plot file at `path` for the `sensors` of `config` when it is ASTERIX
+/// (`None`: CSV, which the caller reads, only its first bytes read here).
+///
+/// # Errors
+/// The CSV reader's errors; for ASTERIX, [`CliError::Capture`] for an unreadable
+/// capture, [`CliError::UnknownSource`] for a report of a radar not configured,
+/// [`CliError::Input`] for two sensors with one SAC/SIC or a plot whose values Argus
+/// refuses.
+pub(super) fn read(
+    path: &Path,
+    config: &Path,
+    sensors: &[Sensor],
+) -> Result<Option<PlotSource>, CliError> {
+    let Some(surveillance) = asterix_io::read(path)? else {
+        return Ok(None);
+    };
+    for (k, a) in sensors.iter().enumerate() {
+        if let Some(b) = sensors[k + 1..]
+            .iter()
+            .find(|b| answers_to(a).is_some() && answers_to(a) == answers_to(b))
+        {
+            return Err(CliError::input(
+                config,
+                None,
+                Some("sac"),
+                format!(
+                    "sensors {} and {} answer to one ASTERIX SAC/SIC {}",
+                    a.id,
+                    b.id,
+                    answers_to(a).map_or_else(String::new, show)
+                ),
+            ));
+        }
+    }
+    if let Some(note) = surveillance.skipped_note(path) {
+        eprintln!("warning: {note}");
+    }
+    let data = radar_data(&surveillance);
+    let sensor_of = |d: DataSource| sensors.iter().find(|s| answers_to(s) == Some(d));
+    let mut plots = Vec::with_capacity(data.plots.len());
+    for p in &data.plots {
+        let Some(s) = sensor_of(p.source) else {
+            return Err(CliError::UnknownSource {
+                file: path.to_path_buf(),
+                record: p.number,
+                sac: p.source.sac,
+                sic: p.source.sic,
+                config: config.to_path_buf(),
+                known: sensors
+                    .iter()
+                    .filter_map(answers_to)
+                    .map(show)
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            });
+        };
+        let plot = Plot::polar(p.time, SensorId(s.id), p.range, p.azimuth)
+            .map_err(|e| CliError::input(path, Some(p.number), Some("I048/040"), e.to_string()))?;
+        plots.push(FilePlot {
+            line: p.number,
+            plot,
+        });
+    }
+    let markers = data
+        .services
+        .iter()
+        .filter(|m| sensor_of(m.source).is_some())
+        .map(|m| m.time)
+        .collect();
+    let rotations = sensors
+        .iter()
+        .filter_map(|s| {
+            let (period, north_time) = rotation_of(&data.services, answers_to(s)?)?;
+            Some(MessageRotation {
+                sensor: s.id,
+                period,
+                north_time,
+            })
+        })
+        .collect();
+    Ok(Some(PlotSource {
+        plots,
+        markers,
+        rotations,
+    }))
+}
