@@ -159,12 +159,6 @@ pub enum EncodeError {
         /// Length the block would have.
         len: usize,
     },
-    /// The category is decoded only.
-    #[error("CAT{cat:03} encoding is not supported (decode only)")]
-    Unsupported {
-        /// Category.
-        cat: u8,
-    },
     /// Items were added out of FRN order or the FRN is not in the UAP.
     #[error("CAT{cat:03}: FRN {frn} added out of order or not in the UAP")]
     FrnOrder {
