@@ -127,6 +127,22 @@ impl DecodeError {
         }
     }
 
+    /// The reason's name (the variant), for counting skips by reason.
+    #[must_use]
+    pub fn reason(&self) -> &'static str {
+        match self {
+            Self::TruncatedHeader { .. } => "TruncatedHeader",
+            Self::BlockLengthTooShort { .. } => "BlockLengthTooShort",
+            Self::BlockLengthExceedsInput { .. } => "BlockLengthExceedsInput",
+            Self::UnknownCategory { .. } => "UnknownCategory",
+            Self::FspecUnterminated { .. } => "FspecUnterminated",
+            Self::EmptyRecord { .. } => "EmptyRecord",
+            Self::UndefinedFrn { .. } => "UndefinedFrn",
+            Self::ItemOverrun { .. } => "ItemOverrun",
+            Self::InvalidItem { .. } => "InvalidItem",
+        }
+    }
+
     /// The item the error refers to, if any.
     #[must_use]
     pub fn item(&self) -> Option<ItemId> {

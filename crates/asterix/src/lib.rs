@@ -71,7 +71,9 @@ mod cat048;
 mod cat062;
 mod error;
 mod fields;
+pub mod mutation;
 mod record;
+pub mod samples;
 mod uap;
 
 pub use block::{Decoded, Record, Skip, decode, encode_block};
