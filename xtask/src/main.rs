@@ -9,8 +9,12 @@
 //!   (bench, median, machine) from criterion's `estimates.json` files.
 //! - `cargo xtask cluster-test [--runs N] [--keep]`: a 4-shard `argus run gimpo` campaign and
 //!   its merge on a one-node Slurm started on localhost ([`cluster_test`]).
+//! - `cargo xtask mutate [--count N] [--seed S] [FILE...]`: the full ASTERIX mutation run,
+//!   10⁶ mutated records by default, over the samples of every category and any raw block
+//!   files given ([`mutate`]).
 
 mod cluster_test;
+mod mutate;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -21,6 +25,7 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("test") => test(),
         Some("cluster-test") => cluster_test::cluster_test(&workspace_root(), &args[1..]),
+        Some("mutate") => mutate::mutate(&args[1..]),
         Some("bench") => {
             let quick = args.iter().any(|a| a == "--quick");
             let filter = args
@@ -30,7 +35,7 @@ fn main() -> ExitCode {
                 .map(String::as_str);
             bench(filter, quick)
         }
-        _ => Err("usage: cargo xtask <test | bench [--quick] [FILTER] | cluster-test [--runs N] [--keep]>".to_owned()),
+        _ => Err("usage: cargo xtask <test | bench [--quick] [FILTER] | cluster-test [--runs N] [--keep] | mutate [--count N] [--seed S] [FILE...]>".to_owned()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

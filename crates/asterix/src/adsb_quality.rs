@@ -115,7 +115,8 @@ impl Quality {
     /// diagonal, no correlation (the EPU is a circle).
     #[must_use]
     pub fn position_covariance(self) -> Option<[[f64; 2]; 2]> {
-        self.position_sigma_m().map(|s| [[s * s, 0.0], [0.0, s * s]])
+        self.position_sigma_m()
+            .map(|s| [[s * s, 0.0], [0.0, s * s]])
     }
 
     /// The containment radius bound Rc from NIC, metres (integrity only; not

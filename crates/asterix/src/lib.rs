@@ -76,8 +76,8 @@ mod record;
 pub mod samples;
 mod uap;
 
-pub use block::{Decoded, Record, Skip, decode, encode_block};
 pub use adsb_quality::{Quality, QualityExt, R95_PER_SIGMA, containment_radius_m, epu_m};
+pub use block::{Decoded, Record, Skip, decode, encode_block};
 pub use cat021::{Cat021, LatLon};
 pub use cat034::{Cat034, MessageType, RotationPeriod, Sector};
 pub use cat048::{

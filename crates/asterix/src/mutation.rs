@@ -40,6 +40,8 @@ pub struct MutationReport {
     pub skips: BTreeMap<&'static str, u64>,
     /// The slowest single decode.
     pub max_decode: Duration,
+    /// The step of the slowest decode.
+    pub max_decode_step: u64,
     /// Wall time of the run.
     pub elapsed: Duration,
 }
@@ -99,7 +101,9 @@ impl SplitMix {
 /// The end of the record at `pos` of a block of `cat`, if it decodes.
 fn record_end(cat: u8, data: &[u8], pos: usize, end: usize) -> Option<usize> {
     fn one<C: Category>(data: &[u8], pos: usize, end: usize) -> Option<usize> {
-        decode_record::<C>(data, pos, end).ok().map(|(_, next)| next)
+        decode_record::<C>(data, pos, end)
+            .ok()
+            .map(|(_, next)| next)
     }
     match cat {
         48 => one::<Cat048>(data, pos, end),
@@ -166,7 +170,10 @@ fn mutate(m: &mut Vec<u8>, s: Span, op: usize, rng: &mut SplitMix) {
         }
         1 => m.truncate(s.start + rng.below(s.end - s.start)),
         2 => len_at(m, usize::from(u16::from_le_bytes([rng.byte(), rng.byte()]))),
-        3 => len_at(m, s.start + 1 + rng.below(s.end - s.start - 1) - s.block_start),
+        3 => len_at(
+            m,
+            s.start + 1 + rng.below(s.end - s.start - 1) - s.block_start,
+        ),
         4 => {
             let n = 1 + rng.below(8);
             for b in &mut m[s.start..(s.start + n).min(s.block_end)] {
@@ -192,12 +199,19 @@ fn check(clean: &Decoded, s: Span, op: usize, m: &[u8], d: &Decoded) -> Result<(
     }
     for k in &d.skipped {
         if k.error.offset() > m.len() || k.error.to_string().is_empty() {
-            return Err(format!("skip {:?} outside the {}-byte input", k.error, m.len()));
+            return Err(format!(
+                "skip {:?} outside the {}-byte input",
+                k.error,
+                m.len()
+            ));
         }
         if let Some(item) = k.error.item()
             && !matches!(item.cat, 21 | 34 | 48 | 62)
         {
-            return Err(format!("skip {:?} names an item of no known category", k.error));
+            return Err(format!(
+                "skip {:?} names an item of no known category",
+                k.error
+            ));
         }
     }
     // Records before the damage are kept as they were: the blocks before it
@@ -208,7 +222,9 @@ fn check(clean: &Decoded, s: Span, op: usize, m: &[u8], d: &Decoded) -> Result<(
         s.before - s.in_block
     };
     if d.records.len() < kept_before || d.records[..kept_before] != clean.records[..kept_before] {
-        return Err(format!("the {kept_before} records before the damage are not kept"));
+        return Err(format!(
+            "the {kept_before} records before the damage are not kept"
+        ));
     }
     // Damage inside a record, or an unknown category, leaves the later blocks' framing.
     if matches!(op, 0 | 4 | 5) {
@@ -277,7 +293,11 @@ pub fn run(
             what: "decode panicked".to_owned(),
             input: m.clone(),
         })?;
-        report.max_decode = report.max_decode.max(t.elapsed());
+        let took = t.elapsed();
+        if took > report.max_decode {
+            report.max_decode = took;
+            report.max_decode_step = step;
+        }
         check(&clean, s, op, &m, &d).map_err(|what| MutationFailure {
             step,
             op: OPS[op],

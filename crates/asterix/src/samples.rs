@@ -8,8 +8,8 @@ use crate::block::encode_block;
 use crate::cat021::{Cat021, LatLon};
 use crate::cat034::{Cat034, MessageType, RotationPeriod, Sector};
 use crate::cat048::{
-    CartesianPosition, Cat048, FlightLevel, MeasuredPolar, Mode3A, PolarVelocity,
-    ReportDescriptor, TrackStatus,
+    CartesianPosition, Cat048, FlightLevel, MeasuredPolar, Mode3A, PolarVelocity, ReportDescriptor,
+    TrackStatus,
 };
 use crate::cat062::{Cartesian062, Cat062, Velocity062, Wgs84Position};
 use crate::error::EncodeError;

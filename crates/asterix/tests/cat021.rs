@@ -72,17 +72,18 @@ fn on_grid(pow: u32) -> impl Strategy<Value = LatLon> {
 
 fn cat021() -> impl Strategy<Value = Cat021> {
     let source = (any::<u8>(), any::<u8>()).prop_map(|(sac, sic)| DataSource { sac, sic });
-    let quality = (0u8..8, 0u8..16, of((any::<bool>(), 0u8..4, 0u8..16))).prop_map(
-        |(nac_v, nic, ext)| Quality {
-            nac_v,
-            nic,
-            extension: ext.map(|(nic_baro, sil, nac_p)| QualityExt {
-                nic_baro,
-                sil,
-                nac_p,
-            }),
-        },
-    );
+    let quality =
+        (0u8..8, 0u8..16, of((any::<bool>(), 0u8..4, 0u8..16))).prop_map(|(nac_v, nic, ext)| {
+            Quality {
+                nac_v,
+                nic,
+                extension: ext.map(|(nic_baro, sil, nac_p)| QualityExt {
+                    nic_baro,
+                    sil,
+                    nac_p,
+                }),
+            }
+        });
     (
         (of(source), of(on_grid(23)), of(on_grid(30))),
         (of(time()), of(time()), of(time()), of(time()), of(time())),
@@ -176,7 +177,10 @@ fn cat021_encoder_refuses_what_does_not_fit() {
     ];
     for r in bad {
         let e = encode_block(&[r], &mut Vec::new()).unwrap_err();
-        assert!(matches!(e, EncodeError::OutOfRange { item, .. } if item.cat == 21), "{e}");
+        assert!(
+            matches!(e, EncodeError::OutOfRange { item, .. } if item.cat == 21),
+            "{e}"
+        );
     }
     // 180° E is −180°: the same meridian, and the top count does not overflow.
     let r = Cat021 {

@@ -20,7 +20,12 @@ fn samples_hold_every_category() {
     assert_eq!(count(|r| matches!(r, Record::Cat034(_))), n34);
     assert_eq!(count(|r| matches!(r, Record::Cat021(_))), n21);
     assert_eq!(count(|r| matches!(r, Record::Cat062(_))), n62);
-    assert_eq!(d.skipped.len(), 1, "only the unknown category: {:?}", d.skipped);
+    assert_eq!(
+        d.skipped.len(),
+        1,
+        "only the unknown category: {:?}",
+        d.skipped
+    );
 }
 
 #[test]
@@ -41,10 +46,18 @@ fn mutated_records_never_panic_and_every_loss_is_a_typed_skip() {
         "ItemOverrun",
         "EmptyRecord",
     ] {
-        assert!(r.skips.get(reason).copied().unwrap_or(0) > 1_000, "{reason}: {:?}", r.skips);
+        assert!(
+            r.skips.get(reason).copied().unwrap_or(0) > 1_000,
+            "{reason}: {:?}",
+            r.skips
+        );
     }
     // Rarer: an FRN the UAP leaves spare (≈ 600 per 10⁵ at this seed).
-    assert!(r.skips.get("UndefinedFrn").copied().unwrap_or(0) > 100, "{:?}", r.skips);
+    assert!(
+        r.skips.get("UndefinedFrn").copied().unwrap_or(0) > 100,
+        "{:?}",
+        r.skips
+    );
     // Most records survive: the rest of a damaged block or the next block is kept
     // (30 clean records per input; 20 on average is a loose floor).
     assert!(r.records_kept > 20 * r.inputs, "{}", r.records_kept);
