@@ -25,7 +25,7 @@ fn plot(i: u16) -> Cat048 {
         descriptor: Some(ReportDescriptor {
             typ: 5,
             spi: i.is_multiple_of(2),
-            extension: i.is_multiple_of(3).then_some(0x40),
+            extension: i.is_multiple_of(3).then_some(0x94),
             ..ReportDescriptor::default()
         }),
         polar: Some(MeasuredPolar {
@@ -55,7 +55,7 @@ fn plot(i: u16) -> Cat048 {
             rad: 2,
             cdm: u8::try_from(i % 4).unwrap_or(0),
             manoeuvre: i.is_multiple_of(4),
-            extension: (!i.is_multiple_of(2)).then_some(0x40),
+            extension: (!i.is_multiple_of(2)).then_some(0xa0),
             ..TrackStatus::default()
         }),
     }
