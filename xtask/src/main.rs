@@ -3,7 +3,8 @@
 //! - `cargo xtask test`: `cargo fmt --all --check`, `cargo clippy --workspace --all-targets -- -D warnings`,
 //!   `cargo test --workspace`, then the Python package's tests: a venv in
 //!   `<target>/py-venv` with `python/requirements-test.txt`, `pip install ./python` (the
-//!   wheel built with the dev profile, reusing the test build), `pytest python/tests` —
+//!   wheel built with the dev profile, reusing the test build), `pytest python/tests` (with
+//!   the `argus` binary and the `asterix_json` example of argus-asterix built for them) —
 //!   the README's test command and what CI runs.
 //! - `cargo xtask bench [--quick] [FILTER]`: runs the criterion benches and writes `docs/BENCHMARKS.md`
 //!   (bench, median, machine) from criterion's `estimates.json` files.
@@ -116,6 +117,8 @@ fn run(program: &Path, args: &[&str], envs: &[(&str, &std::ffi::OsStr)]) -> Resu
 /// project's files, the package installed from `python/`, and pytest.
 fn python_tests() -> Result<(), String> {
     cargo(&["build", "-p", "argus-cli"])?;
+    // The ASTERIX cross-check's Argus side (python/tests/test_asterix_crosscheck.py).
+    cargo(&["build", "-p", "argus-asterix", "--example", "asterix_json"])?;
     let target = target_dir();
     let venv = target.join("py-venv");
     let python = venv.join("bin").join("python");
@@ -155,10 +158,14 @@ fn python_tests() -> Result<(), String> {
         &[("MATURIN_PEP517_ARGS", dev)],
     )?;
     let bin = target.join("debug").join("argus");
+    let asterix_json = target.join("debug").join("examples").join("asterix_json");
     run(
         &python,
         &["-m", "pytest", "-q", "python/tests"],
-        &[("ARGUS_BIN", bin.as_os_str())],
+        &[
+            ("ARGUS_BIN", bin.as_os_str()),
+            ("ARGUS_ASTERIX_JSON", asterix_json.as_os_str()),
+        ],
     )
 }
 

@@ -191,7 +191,7 @@ mod tests {
         let c = q.position_covariance().unwrap_or([[0.0; 2]; 2]);
         let s = 10.0 / R95_PER_SIGMA;
         assert!((c[0][0] - s * s).abs() < 1e-12 && (c[1][1] - s * s).abs() < 1e-12);
-        assert!(c[0][1] == 0.0 && c[1][0] == 0.0);
+        assert!(c[0][1].abs() < f64::MIN_POSITIVE && c[1][0].abs() < f64::MIN_POSITIVE);
         // NIC 8 → Rc < 0.1 NM = 185.2 m.
         assert!((q.containment_radius_m().unwrap_or(0.0) - 185.2).abs() < 1e-9);
         assert_eq!(containment_radius_m(0), None);
