@@ -61,8 +61,12 @@ fn mutated_records_never_panic_and_every_loss_is_a_typed_skip() {
     // Most records survive: the rest of a damaged block or the next block is kept
     // (30 clean records per input; 20 on average is a loose floor).
     assert!(r.records_kept > 20 * r.inputs, "{}", r.records_kept);
-    // Bounded time: a ~700-byte input decodes in microseconds; the slowest
-    // seen on a loaded 2-core machine was 24 ms (descheduled), so 1 s only
-    // catches a loop.
-    assert!(r.max_decode.as_millis() < 1_000, "{:?}", r.max_decode);
+    // Bounded time: the ~800-byte input decodes in microseconds (7 µs a step
+    // measured with the mutation and the checks). The mean is the robust
+    // figure: a single decode can be descheduled on a loaded machine (24 ms
+    // seen here at load 12); 1 ms on average leaves a 100× margin and still
+    // catches a decode that loops or goes quadratic.
+    #[allow(clippy::cast_precision_loss)]
+    let mean = r.elapsed.as_secs_f64() / r.inputs as f64;
+    assert!(mean < 1e-3, "mean step {mean} s, slowest decode {:?}", r.max_decode);
 }
