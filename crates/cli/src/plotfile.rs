@@ -147,8 +147,7 @@ impl FilePlot {
 /// # Errors
 /// [`CliError::Input`] naming the file, line and field; [`CliError::Io`].
 pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
-    let rdr = reader().from_path(path).map_err(|e| csv_error(path, e))?;
-    read_from(rdr, path)
+    PlotReader::open(path)?.collect()
 }
 
 /// [`read`] on plot file text held in memory; `path` names it in errors.
@@ -156,7 +155,7 @@ pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
 /// # Errors
 /// As [`read`].
 pub(crate) fn read_text(text: &str, path: &Path) -> Result<Vec<FilePlot>, CliError> {
-    read_from(reader().from_reader(text.as_bytes()), path)
+    PlotReader::new(reader().from_reader(text.as_bytes()), path)?.collect()
 }
 
 /// The CSV reader settings of plot files.
@@ -166,82 +165,128 @@ fn reader() -> csv::ReaderBuilder {
     b
 }
 
-/// The plots of `rdr` (a plot file called `path` in errors).
-fn read_from<R: std::io::Read>(
-    mut rdr: csv::Reader<R>,
-    path: &Path,
-) -> Result<Vec<FilePlot>, CliError> {
-    let headers = rdr.headers().map_err(|e| csv_error(path, e))?.clone();
-    let cols: Vec<String> = headers.iter().map(str::to_owned).collect();
-    for c in &cols {
-        if !KNOWN.contains(&c.as_str()) {
-            return Err(CliError::input(
-                path,
-                Some(1),
-                Some(c),
-                format!("unknown column (known: {})", KNOWN.join(", ")),
-            ));
-        }
+/// A plot file read one plot at a time (memory independent of the file's length), with
+/// the checks of [`read`]: the header when opened, each row as it comes. After an error
+/// it yields nothing more.
+pub(crate) struct PlotReader<R> {
+    rdr: csv::Reader<R>,
+    path: std::path::PathBuf,
+    cols: Vec<String>,
+    layout: Layout,
+    record: csv::StringRecord,
+    last_t: f64,
+    done: bool,
+}
+
+impl PlotReader<std::fs::File> {
+    /// The plot file at `path`, its header checked.
+    ///
+    /// # Errors
+    /// As [`read`], for the header; [`CliError::Io`] when it cannot be opened.
+    pub(crate) fn open(path: &Path) -> Result<Self, CliError> {
+        let rdr = reader().from_path(path).map_err(|e| csv_error(path, e))?;
+        Self::new(rdr, path)
     }
-    let idx = |name: &str| cols.iter().position(|c| c == name);
-    for name in ["t", "sensor"] {
-        if idx(name).is_none() {
-            return Err(CliError::input(
-                path,
-                Some(1),
-                Some(name),
-                "required column is missing",
-            ));
+}
+
+impl<R: std::io::Read> PlotReader<R> {
+    /// The plots of `rdr` (a plot file called `path` in errors), its header checked.
+    ///
+    /// # Errors
+    /// As [`read`], for the header.
+    fn new(mut rdr: csv::Reader<R>, path: &Path) -> Result<Self, CliError> {
+        let headers = rdr.headers().map_err(|e| csv_error(path, e))?.clone();
+        let cols: Vec<String> = headers.iter().map(str::to_owned).collect();
+        for c in &cols {
+            if !KNOWN.contains(&c.as_str()) {
+                return Err(CliError::input(
+                    path,
+                    Some(1),
+                    Some(c),
+                    format!("unknown column (known: {})", KNOWN.join(", ")),
+                ));
+            }
         }
-    }
-    let polar = ["range", "azimuth", "elevation"]
+        let idx = |name: &str| cols.iter().position(|c| c == name);
+        for name in ["t", "sensor"] {
+            if idx(name).is_none() {
+                return Err(CliError::input(
+                    path,
+                    Some(1),
+                    Some(name),
+                    "required column is missing",
+                ));
+            }
+        }
+        let polar = ["range", "azimuth", "elevation"]
+            .iter()
+            .any(|c| idx(c).is_some());
+        let cart = [
+            "x", "y", "z", "r_xx", "r_xy", "r_yy", "r_xz", "r_yz", "r_zz",
+        ]
         .iter()
         .any(|c| idx(c).is_some());
-    let cart = [
-        "x", "y", "z", "r_xx", "r_xy", "r_yy", "r_xz", "r_yz", "r_zz",
-    ]
-    .iter()
-    .any(|c| idx(c).is_some());
-    let three_d = ["elevation", "z", "r_xz", "r_yz", "r_zz"]
-        .iter()
-        .any(|c| idx(c).is_some());
-    let layout = match (polar, cart, three_d) {
-        (true, false, false) => Layout::Polar,
-        (true, false, true) => Layout::Spherical,
-        (false, true, false) => Layout::Cartesian2,
-        (false, true, true) => Layout::Cartesian3,
-        (true, true, _) => {
-            return Err(CliError::input(
-                path,
-                Some(1),
-                None,
-                "a file holds either polar/spherical (range, azimuth[, elevation]) or Cartesian (x, y[, z]) plots, not both",
-            ));
+        let three_d = ["elevation", "z", "r_xz", "r_yz", "r_zz"]
+            .iter()
+            .any(|c| idx(c).is_some());
+        let layout = match (polar, cart, three_d) {
+            (true, false, false) => Layout::Polar,
+            (true, false, true) => Layout::Spherical,
+            (false, true, false) => Layout::Cartesian2,
+            (false, true, true) => Layout::Cartesian3,
+            (true, true, _) => {
+                return Err(CliError::input(
+                    path,
+                    Some(1),
+                    None,
+                    "a file holds either polar/spherical (range, azimuth[, elevation]) or Cartesian (x, y[, z]) plots, not both",
+                ));
+            }
+            (false, false, _) => {
+                return Err(CliError::input(
+                    path,
+                    Some(1),
+                    None,
+                    "no measurement columns: expected range,azimuth[,elevation] or x,y,r_xx,r_xy,r_yy (3-D: x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz)",
+                ));
+            }
+        };
+        for name in layout.all_columns() {
+            if idx(name).is_none() {
+                return Err(CliError::input(
+                    path,
+                    Some(1),
+                    Some(name),
+                    "required column is missing",
+                ));
+            }
         }
-        (false, false, _) => {
-            return Err(CliError::input(
-                path,
-                Some(1),
-                None,
-                "no measurement columns: expected range,azimuth[,elevation] or x,y,r_xx,r_xy,r_yy (3-D: x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz)",
-            ));
-        }
-    };
-    let covariance_cols = layout.columns().1;
-    for name in layout.all_columns() {
-        if idx(name).is_none() {
-            return Err(CliError::input(
-                path,
-                Some(1),
-                Some(name),
-                "required column is missing",
-            ));
-        }
+        Ok(Self {
+            rdr,
+            path: path.to_path_buf(),
+            cols,
+            layout,
+            record: csv::StringRecord::new(),
+            last_t: f64::NEG_INFINITY,
+            done: false,
+        })
     }
-    let mut out = Vec::new();
-    let mut last_t = f64::NEG_INFINITY;
-    for rec in rdr.records() {
-        let rec = rec.map_err(|e| csv_error(path, e))?;
+
+    /// The next row's plot, or `None` at the end of the file.
+    fn next_plot(&mut self) -> Result<Option<FilePlot>, CliError> {
+        let path = self.path.as_path();
+        if !self
+            .rdr
+            .read_record(&mut self.record)
+            .map_err(|e| csv_error(path, e))?
+        {
+            return Ok(None);
+        }
+        let rec = &self.record;
+        let cols = &self.cols;
+        let layout = self.layout;
+        let covariance_cols = layout.columns().1;
+        let idx = |name: &str| cols.iter().position(|c| c == name);
         let line = rec.position().map_or(0, csv::Position::line);
         let at =
             |name: &str, message: String| CliError::input(path, Some(line), Some(name), message);
@@ -257,13 +302,14 @@ fn read_from<R: std::io::Read>(
             }
         };
         let time = num(TIME)?;
-        if time < last_t {
+        if time < self.last_t {
+            let last_t = self.last_t;
             return Err(at(
                 TIME,
                 format!("time goes backwards ({time} after {last_t})"),
             ));
         }
-        last_t = time;
+        self.last_t = time;
         let raw_sensor = idx(SENSOR).and_then(|i| rec.get(i)).unwrap_or("");
         let sensor: u32 = raw_sensor.parse().map_err(|_| {
             at(
@@ -344,9 +390,21 @@ fn read_from<R: std::io::Read>(
         let plot = Plot::new(time, SensorId(sensor), measurement)
             .and_then(|p| p.with_amplitude(amplitude))
             .map_err(|e| at(TIME, e.to_string()))?;
-        out.push(FilePlot { line, plot });
+        Ok(Some(FilePlot { line, plot }))
     }
-    Ok(out)
+}
+
+impl<R: std::io::Read> Iterator for PlotReader<R> {
+    type Item = Result<FilePlot, CliError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.done {
+            return None;
+        }
+        let next = self.next_plot().transpose();
+        self.done = !matches!(next, Some(Ok(_)));
+        next
+    }
 }
 
 fn csv_error(path: &Path, e: csv::Error) -> CliError {

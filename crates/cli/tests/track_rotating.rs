@@ -334,3 +334,86 @@ fn bad_rotating_sensor_keys_name_their_line() {
     let line = line_of(&config, "rotation");
     assert_config_error(&run, &format!("rot.toml:{line}"), "rotation");
 }
+
+#[test]
+fn a_bad_plot_late_in_the_file_leaves_no_tracks_file_behind() {
+    // The tracks are written as the sectors conclude (to a temporary, renamed at the
+    // end): a bad plot after many good ones stops the run with nothing written, neither
+    // the tracks file nor the temporary, and an older tracks file stays as it was.
+    let dir = tempfile::tempdir().unwrap();
+    let (mut plots, _) = plots(7, &aircraft());
+    let good_lines = plots.lines().count();
+    plots.push_str("600.0,1,-30000,0.3\n");
+    std::fs::write(dir.path().join("tracks.csv"), "old\n").unwrap();
+    std::fs::write(dir.path().join("rot.toml"), example()).unwrap();
+    std::fs::write(dir.path().join("plots.csv"), &plots).unwrap();
+    let o = argus(
+        &[
+            "track",
+            "--config",
+            "rot.toml",
+            "--plots",
+            "plots.csv",
+            "--out",
+            "tracks.csv",
+        ],
+        dir.path(),
+    );
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(
+        stderr.contains(&format!("plots.csv:{}", good_lines + 1)) && stderr.contains("range"),
+        "{stderr}"
+    );
+    let left: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    let mut left = left;
+    left.sort();
+    assert_eq!(left, ["plots.csv", "rot.toml", "tracks.csv"], "files left");
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("tracks.csv")).unwrap(),
+        "old\n"
+    );
+    assert!(good_lines > 1000, "{good_lines} plots before the bad one");
+}
+
+#[test]
+fn the_stream_tracks_a_rotating_radar_as_argus_track_does() {
+    // `TrackStream` (the Python `Tracker`'s engine) fed the plot file in two halves gives
+    // the rows `argus track` gives for the whole file, in order, except those of the
+    // sectors still open when the plots end (`argus track` flushes them; a stream keeps
+    // them open for plots still to come).
+    let dir = tempfile::tempdir().unwrap();
+    let (file, _) = plots(5, &aircraft());
+    let run = track(dir.path(), &example(), &file);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    let config = dir.path().join("rot.toml");
+    let mut stream = argus_cli::TrackStream::new(&config).unwrap();
+    let mut lines: Vec<&str> = file.lines().collect();
+    let header = lines.remove(0);
+    let half = lines.len() / 2;
+    let mut streamed = Vec::new();
+    for part in [&lines[..half], &lines[half..]] {
+        let text = format!("{header}\n{}\n", part.join("\n"));
+        let out = stream.process(&text, Path::new("part.csv")).unwrap();
+        streamed.extend(out.lines().skip(1).map(str::to_owned));
+    }
+    let whole: Vec<&str> = run.csv.lines().skip(1).collect();
+    assert!(
+        streamed.len() > 400,
+        "{} rows streamed of {}",
+        streamed.len(),
+        whole.len()
+    );
+    // The open sectors at the end hold at most a revolution of rows (four aircraft, and
+    // clutter tentatives).
+    assert!(
+        whole.len() - streamed.len() < 50,
+        "{} against {}",
+        streamed.len(),
+        whole.len()
+    );
+    assert_eq!(streamed, whole[..streamed.len()], "the streamed rows");
+}

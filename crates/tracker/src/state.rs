@@ -67,7 +67,28 @@ pub(crate) enum TrackState {
     Aircraft(Box<AircraftState>),
 }
 
+/// A copy of a track's estimator state taken out of its box, so that saving it and
+/// restoring it allocates nothing (the sector's look prediction; see
+/// `Tracker::saved`). Only the aircraft IMM needs it: the multi-IMM, whose state also
+/// becomes its prediction, is refused with rotating sensors.
+pub(crate) type SavedState = AircraftState;
+
 impl TrackState {
+    /// A copy of the aircraft IMM's state (`None` for every other estimator).
+    pub(crate) fn save(&self) -> Option<SavedState> {
+        match self {
+            Self::Aircraft(a) => Some(**a),
+            Self::Single | Self::Imm(_) | Self::Multi(_) => None,
+        }
+    }
+
+    /// Puts back a state [`Self::save`] copied (into the same box: nothing allocated).
+    pub(crate) fn restore(&mut self, saved: SavedState) {
+        if let Self::Aircraft(a) = self {
+            **a = saved;
+        }
+    }
+
     /// The mode probabilities of an IMM, multi-IMM or aircraft-IMM state.
     pub(crate) fn mode_probabilities(&self) -> Option<ModeProbabilities> {
         match self {

@@ -9,7 +9,7 @@ use crate::assign::Edge;
 use crate::estimator::Estimator;
 use crate::grid::Grid;
 use crate::plot::{ScanPoint, SensorModel};
-use crate::state::TrackState;
+use crate::state::SavedState;
 use crate::{
     AssociationConfig, DeletionReason, Plot, SensorId, Track, TrackId, TrackStatus, TrackerConfig,
     TrackerError,
@@ -114,9 +114,11 @@ pub struct Tracker {
     /// An IMM track's prediction to its plot's time.
     modes: Vec<Option<ImmPrediction<4, 2>>>,
     /// A sector's looked-at tracks' states before their look prediction, for the
-    /// estimators whose state becomes its prediction (aircraft IMM, multi-IMM): restored
-    /// before predicting again to the plot's own time, or when the track is carried.
-    saved: Vec<Option<TrackState>>,
+    /// estimator whose state becomes its prediction (the aircraft IMM; the multi-IMM is
+    /// refused with rotating sensors): restored before predicting again to the plot's own
+    /// time, or when the track is carried. Copies out of the tracks' boxes into this
+    /// reused buffer, so a sector allocates nothing for them.
+    saved: Vec<Option<SavedState>>,
 }
 
 impl Tracker {

@@ -10,6 +10,7 @@
 //! multi-target tracker ([`multi`]); both write their rows through [`rows`].
 
 mod errors;
+mod feed;
 mod geo;
 mod job;
 mod multi;
@@ -52,9 +53,9 @@ pub fn run(
 ) -> Result<(usize, Option<PathBuf>), CliError> {
     let loaded = job::load_all(config)?;
     let reference = loaded.reference.as_ref();
-    let plots = plotfile::read(plots_path)?;
     match loaded.job {
         job::Job::Single { sensors, estimator } => {
+            let plots = plotfile::read(plots_path)?;
             let ctx = start::Ctx {
                 config,
                 plots_path,
@@ -75,7 +76,8 @@ pub fn run(
                 reference,
                 smoothing,
             };
-            let (n, summary) = multi::run(&m, &files, &plots)?;
+            let plots = plotfile::PlotReader::open(plots_path)?;
+            let (n, summary) = multi::run(&m, &files, plots)?;
             Ok((n, Some(summary)))
         }
     }

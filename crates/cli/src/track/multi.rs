@@ -11,13 +11,14 @@ use argus_tracker::{
     TrackStatus, Tracker, TrackerConfig, TrackerError,
 };
 
+use super::feed::Feed;
 use super::geo::Reference;
 use super::multi_smooth::Recorded;
 use super::rows::{Column, Point, TrackRows};
 use super::smooth::Smoothing;
 use super::tracker_config::MultiTarget;
 use crate::error::CliError;
-use crate::output::write_atomic;
+use crate::output::{AtomicFile, write_atomic};
 use crate::plotfile::FilePlot;
 
 /// Where the run's inputs and outputs are, for errors and the summary.
@@ -90,14 +91,9 @@ pub(super) fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliE
     }
 }
 
-/// A [`TrackerError`] about plot `index` of the scan starting at file plot `start`, at
-/// that plot's line.
-pub(super) fn plot_error(
-    files: &Files<'_>,
-    plots: &[FilePlot],
-    start: usize,
-    e: TrackerError,
-) -> CliError {
+/// A [`TrackerError`] about plot `index` of the plots handed to the tracker together,
+/// whose file lines are `lines`, at that plot's line.
+pub(super) fn plot_error(files: &Files<'_>, lines: &[u64], e: TrackerError) -> CliError {
     let (index, field) = match &e {
         TrackerError::TimeOrder { index, .. } => (*index, Some("t")),
         TrackerError::UnknownSensor { index, .. } => (*index, Some("sensor")),
@@ -112,7 +108,7 @@ pub(super) fn plot_error(
         | TrackerError::MixedScan { index, .. } => (*index, None),
         _ => return CliError::Tracker(e),
     };
-    let line = plots.get(start + index).map(|p| p.line);
+    let line = lines.get(index).copied();
     CliError::input(files.plots, line, field, format!("tracker: {e}"))
 }
 
@@ -181,24 +177,38 @@ struct Summary<'a> {
 }
 
 /// What the reports add up to, and the rows they give.
-struct Tally<'a> {
+pub(super) struct Tally<'a> {
     out: &'a mut TrackRows,
     /// The smoothing recorder (`--smooth`): rows go there instead.
     recorded: Option<&'a mut Recorded>,
-    counts: &'a mut Counts,
+    counts: Counts,
     scans: usize,
     assigned: usize,
 }
 
-impl Tally<'_> {
+impl<'a> Tally<'a> {
+    /// A tally writing its rows to `out`, or to `recorded` for smoothing.
+    pub(super) fn new(out: &'a mut TrackRows, recorded: Option<&'a mut Recorded>) -> Self {
+        Self {
+            out,
+            recorded,
+            counts: Counts {
+                deleted_by_reason: REASONS.iter().map(|r| (reason_name(*r), 0)).collect(),
+                ..Counts::default()
+            },
+            scans: 0,
+            assigned: 0,
+        }
+    }
+
     /// Counts one report (a scan or a sector) and writes its rows: every track of a
     /// synchronous scan; the tracks a sector visited (updated or missed) and those it
     /// deleted. In id order (live tracks are in id order; a deleted one goes in its
     /// place).
-    fn record(&mut self, tracker: &mut Tracker, report: &ScanReport) {
+    pub(super) fn record(&mut self, tracker: &mut Tracker, report: &ScanReport) {
         self.scans += 1;
         self.assigned += report.assigned;
-        let counts = &mut *self.counts;
+        let counts = &mut self.counts;
         counts.initiated += report.initiated.len();
         counts.confirmed += report.confirmed.len();
         counts.deleted += report.deleted.len();
@@ -228,70 +238,29 @@ impl Tally<'_> {
     }
 }
 
-/// A configuration with a rotating sensor: the plots as one stream through
-/// [`Tracker::process`], stepping sector by sector ([`Tracker::next_sector_end`],
-/// [`Tracker::advance_to`]) so that each sector's rows show its tracks as it left them,
-/// and [`Tracker::flush`] at the end.
-fn run_stream(
-    tracker: &mut Tracker,
-    tally: &mut Tally<'_>,
-    files: &Files<'_>,
-    plots: &[FilePlot],
-    converted: &[Plot],
-) -> Result<(), CliError> {
-    let mut start = 0;
-    while start < converted.len() {
-        let (t, s) = (converted[start].time(), converted[start].sensor());
-        let len = converted[start..]
-            .iter()
-            .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
-            .count();
-        while let Some(end) = tracker.next_sector_end()
-            && end <= t
-        {
-            let reports = tracker
-                .advance_to(end)
-                .map_err(|e| plot_error(files, plots, start, e))?;
-            for r in &reports {
-                tally.record(tracker, r);
-            }
-        }
-        let reports = tracker
-            .process(&converted[start..start + len])
-            .map_err(|e| plot_error(files, plots, start, e))?;
-        for r in &reports {
-            tally.record(tracker, r);
-        }
-        start += len;
-    }
-    for r in &tracker.flush() {
-        tally.record(tracker, r);
-    }
-    Ok(())
-}
-
 /// The summary's path beside the tracks file: `<stem>.summary.json`.
 fn summary_path(out: &Path) -> PathBuf {
     out.with_extension("summary.json")
 }
 
-/// Runs the tracker over `plots` (already read and checked by `plotfile`): every plot is
-/// converted before the first scan, so a bad plot stops the run before any track exists
-/// and nothing is written. Writes the tracks CSV and the summary atomically; returns the
-/// number of rows and the summary's path.
+/// Tracked rows are written once this much text is held (bytes).
+const FLUSH_BYTES: usize = 1 << 16;
+
+/// Runs the tracker over `plots` (read and checked one at a time by `plotfile`), writing
+/// the rows as the scans and sectors conclude: memory does not grow with the file (but
+/// with `--smooth`, which holds every confirmed track's rows until the end). The tracks
+/// CSV goes to a temporary renamed at the end, so a bad plot anywhere stops the run with
+/// nothing written; then the summary, atomically. Returns the number of rows and the
+/// summary's path.
 ///
 /// # Errors
-/// [`CliError::Input`] naming the plot file's line for a plot the tracker rejects;
-/// [`CliError::Io`].
+/// [`CliError::Input`] naming the plot file's line for a bad plot or one the tracker
+/// rejects; [`CliError::Io`].
 pub(super) fn run(
     m: &MultiTarget,
     files: &Files<'_>,
-    plots: &[FilePlot],
+    plots: impl Iterator<Item = Result<FilePlot, CliError>>,
 ) -> Result<(usize, PathBuf), CliError> {
-    let converted = plots
-        .iter()
-        .map(|p| tracker_plot(files, p))
-        .collect::<Result<Vec<_>, _>>()?;
     let c = &m.config;
     let mut recorded = match files.smoothing {
         Some(_) => Some(Recorded::new(files, c)?),
@@ -303,35 +272,19 @@ pub(super) fn run(
         columns.extend(Column::smoothed_tracker());
     }
     let mut out = TrackRows::with_reference(columns, files.reference);
-    let mut counts = Counts {
-        deleted_by_reason: REASONS.iter().map(|r| (reason_name(*r), 0)).collect(),
-        ..Counts::default()
-    };
-    let mut tally = Tally {
-        out: &mut out,
-        recorded: recorded.as_mut(),
-        counts: &mut counts,
-        scans: 0,
-        assigned: 0,
-    };
-    if c.sensors.iter().any(|s| s.rotation.is_some()) {
-        run_stream(&mut tracker, &mut tally, files, plots, &converted)?;
-    } else {
-        let mut start = 0;
-        while start < converted.len() {
-            let (t, s) = (converted[start].time(), converted[start].sensor());
-            let len = converted[start..]
-                .iter()
-                .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
-                .count();
-            let report = tracker
-                .process_scan(t, s, &converted[start..start + len])
-                .map_err(|e| plot_error(files, plots, start, e))?;
-            tally.record(&mut tracker, &report);
-            start += len;
+    let mut file = AtomicFile::create(files.out)?;
+    let mut tally = Tally::new(&mut out, recorded.as_mut());
+    let mut feed = Feed::new(c);
+    let mut n_plots = 0;
+    for p in plots {
+        feed.push(&mut tracker, &mut tally, files, &p?)?;
+        n_plots += 1;
+        if tally.out.pending() >= FLUSH_BYTES {
+            tally.out.write_to(&mut file)?;
         }
     }
-    let (scans, assigned) = (tally.scans, tally.assigned);
+    feed.finish(&mut tracker, &mut tally, files)?;
+    let (scans, assigned, mut counts) = (tally.scans, tally.assigned, tally.counts);
     for tr in tracker.tracks() {
         match tr.status() {
             TrackStatus::Tentative => counts.tentative_at_end += 1,
@@ -344,7 +297,8 @@ pub(super) fn run(
         _ => None,
     };
     let rows = out.rows();
-    write_atomic(files.out, out.into_text().as_bytes())?;
+    out.write_to(&mut file)?;
+    file.commit()?;
     let summary = Summary {
         command: "track",
         config: files.config.display().to_string(),
@@ -359,7 +313,7 @@ pub(super) fn run(
             Some(_) => "score".to_owned(),
             None => format!("m-of-n {}/{}", c.confirm_m, c.confirm_n),
         },
-        plots: plots.len(),
+        plots: n_plots,
         scans,
         plots_assigned: assigned,
         rows,

@@ -8,6 +8,8 @@ use argus_core_math::Gaussian;
 use argus_imm::NoiseVariances;
 
 use super::geo::Reference;
+use crate::error::CliError;
+use crate::output::AtomicFile;
 
 /// The state components' names, `[x, vx, y, vy, z, vz]`.
 const STATE: [&str; 6] = ["x", "vx", "y", "vy", "z", "vz"];
@@ -337,6 +339,22 @@ impl TrackRows {
     /// The file's text.
     pub(super) fn into_text(self) -> String {
         self.text
+    }
+
+    /// Writes the text not yet written (the header first) to `file` and forgets it: the
+    /// file as a stream, holding only the rows since the last call.
+    ///
+    /// # Errors
+    /// [`CliError::Io`].
+    pub(super) fn write_to(&mut self, file: &mut AtomicFile) -> Result<(), CliError> {
+        file.write(self.text.as_bytes())?;
+        self.text.clear();
+        Ok(())
+    }
+
+    /// The length of the text not yet written (bytes).
+    pub(super) fn pending(&self) -> usize {
+        self.text.len()
     }
 }
 

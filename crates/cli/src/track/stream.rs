@@ -4,11 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
-use argus_tracker::{Track, Tracker};
+use argus_tracker::Tracker;
 
+use super::feed::Feed;
 use super::geo::Reference;
 use super::job::{self, Job};
-use super::multi::{self, Files};
+use super::multi::{self, Files, Tally};
 use super::rows::TrackRows;
 use super::tracker_config::MultiTarget;
 use crate::error::CliError;
@@ -73,30 +74,16 @@ impl TrackStream {
             reference: self.reference.as_ref(),
             smoothing: None,
         };
-        let converted = plots
-            .iter()
-            .map(|p| multi::tracker_plot(&files, p))
-            .collect::<Result<Vec<_>, _>>()?;
         let mut out =
             TrackRows::with_reference(multi::columns(&self.job.config), self.reference.as_ref());
-        let mut start = 0;
-        while start < converted.len() {
-            let (t, s) = (converted[start].time(), converted[start].sensor());
-            let len = converted[start..]
-                .iter()
-                .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
-                .count();
-            self.tracker
-                .process_scan(t, s, &converted[start..start + len])
-                .map_err(|e| multi::plot_error(&files, plots, start, e))?;
-            let deleted = self.tracker.take_deleted();
-            let mut all: Vec<&Track> = self.tracker.tracks().iter().chain(&deleted).collect();
-            all.sort_by_key(|tr| tr.id());
-            for tr in all {
-                multi::row(&mut out, None, s, tr);
-            }
-            start += len;
+        let mut tally = Tally::new(&mut out, None);
+        let mut feed = Feed::new(&self.job.config);
+        for p in plots {
+            feed.push(&mut self.tracker, &mut tally, &files, p)?;
         }
+        // The call's last plots are a whole scan; a rotating sensor's sector stays open
+        // until a later call's plots (or none: the tracker holds it) pass its end.
+        feed.conclude(&mut self.tracker, &mut tally, &files)?;
         Ok(out.into_text())
     }
 }

@@ -304,11 +304,7 @@ impl Tracker {
             && polar_sensor.is_some()
             && self.points.iter().any(|p| p.polar.is_some());
         let is_imm = matches!(self.est, Estimator::Imm(_));
-        // These estimators' states become their prediction: keep the state before it.
-        let mutates = matches!(
-            self.est,
-            Estimator::Aircraft { .. } | Estimator::MultiImm(_)
-        );
+        // The aircraft IMM's state becomes its prediction: keep the state before it.
         self.saved.clear();
 
         // Predict each looked-at track to its crossing time (never backwards).
@@ -316,8 +312,8 @@ impl Tracker {
         self.imm_predicted.clear();
         self.polar_mp.clear();
         for (track, role) in self.tracks.iter_mut().zip(&self.roles) {
-            self.saved.push(mutates.then(|| track.state.clone()));
             let Role::Look { time, .. } = *role else {
+                self.saved.push(None);
                 self.predicted.push(None);
                 if is_imm {
                     self.imm_predicted.push(None);
@@ -327,6 +323,7 @@ impl Tracker {
                 }
                 continue;
             };
+            self.saved.push(track.state.save());
             let dt = (time - track.time).max(0.0);
             let pred = self.est.predict(
                 &mut track.state,
@@ -377,7 +374,7 @@ impl Tracker {
             if hit.is_none() && weights.is_empty() && !closes {
                 // Carried: the state is as it was before the look prediction.
                 if let Some(saved) = self.saved[k].take() {
-                    track.state = saved;
+                    track.state.restore(saved);
                 }
                 continue;
             }
@@ -386,7 +383,7 @@ impl Tracker {
                     let tj = self.point_times[j];
                     // Predict from the state before the look prediction.
                     if let Some(saved) = self.saved[k].take() {
-                        track.state = saved;
+                        track.state.restore(saved);
                     }
                     self.modes.clear();
                     let pj = self.est.predict(
