@@ -68,5 +68,9 @@ fn mutated_records_never_panic_and_every_loss_is_a_typed_skip() {
     // catches a decode that loops or goes quadratic.
     #[allow(clippy::cast_precision_loss)]
     let mean = r.elapsed.as_secs_f64() / r.inputs as f64;
-    assert!(mean < 1e-3, "mean step {mean} s, slowest decode {:?}", r.max_decode);
+    assert!(
+        mean < 1e-3,
+        "mean step {mean} s, slowest decode {:?}",
+        r.max_decode
+    );
 }
