@@ -3,14 +3,19 @@
 //! - `cargo xtask test`: `cargo fmt --all --check`, `cargo clippy --workspace --all-targets -- -D warnings`,
 //!   `cargo test --workspace`, then the Python package's tests: a venv in
 //!   `<target>/py-venv` with `python/requirements-test.txt`, `pip install ./python` (the
-//!   wheel built with the dev profile, reusing the test build), `pytest python/tests` —
+//!   wheel built with the dev profile, reusing the test build), `pytest python/tests` (with
+//!   the `argus` binary and the `asterix_json` example of argus-asterix built for them) —
 //!   the README's test command and what CI runs.
 //! - `cargo xtask bench [--quick] [FILTER]`: runs the criterion benches and writes `docs/BENCHMARKS.md`
 //!   (bench, median, machine) from criterion's `estimates.json` files.
 //! - `cargo xtask cluster-test [--runs N] [--keep]`: a 4-shard `argus run gimpo` campaign and
 //!   its merge on a one-node Slurm started on localhost ([`cluster_test`]).
+//! - `cargo xtask mutate [--count N] [--seed S] [FILE...]`: the full ASTERIX mutation run,
+//!   10⁶ mutated records by default, over the samples of every category and any raw block
+//!   files given ([`mutate`]).
 
 mod cluster_test;
+mod mutate;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -21,6 +26,7 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("test") => test(),
         Some("cluster-test") => cluster_test::cluster_test(&workspace_root(), &args[1..]),
+        Some("mutate") => mutate::mutate(&args[1..]),
         Some("bench") => {
             let quick = args.iter().any(|a| a == "--quick");
             let filter = args
@@ -30,7 +36,7 @@ fn main() -> ExitCode {
                 .map(String::as_str);
             bench(filter, quick)
         }
-        _ => Err("usage: cargo xtask <test | bench [--quick] [FILTER] | cluster-test [--runs N] [--keep]>".to_owned()),
+        _ => Err("usage: cargo xtask <test | bench [--quick] [FILTER] | cluster-test [--runs N] [--keep] | mutate [--count N] [--seed S] [FILE...]>".to_owned()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -111,6 +117,8 @@ fn run(program: &Path, args: &[&str], envs: &[(&str, &std::ffi::OsStr)]) -> Resu
 /// project's files, the package installed from `python/`, and pytest.
 fn python_tests() -> Result<(), String> {
     cargo(&["build", "-p", "argus-cli"])?;
+    // The ASTERIX cross-check's Argus side (python/tests/test_asterix_crosscheck.py).
+    cargo(&["build", "-p", "argus-asterix", "--example", "asterix_json"])?;
     let target = target_dir();
     let venv = target.join("py-venv");
     let python = venv.join("bin").join("python");
@@ -150,10 +158,14 @@ fn python_tests() -> Result<(), String> {
         &[("MATURIN_PEP517_ARGS", dev)],
     )?;
     let bin = target.join("debug").join("argus");
+    let asterix_json = target.join("debug").join("examples").join("asterix_json");
     run(
         &python,
         &["-m", "pytest", "-q", "python/tests"],
-        &[("ARGUS_BIN", bin.as_os_str())],
+        &[
+            ("ARGUS_BIN", bin.as_os_str()),
+            ("ARGUS_ASTERIX_JSON", asterix_json.as_os_str()),
+        ],
     )
 }
 

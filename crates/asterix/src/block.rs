@@ -16,7 +16,7 @@ pub enum Record {
     Cat048(Cat048),
     /// A CAT034 monoradar service message.
     Cat034(Cat034),
-    /// A CAT021 ADS-B report (decode only).
+    /// A CAT021 ADS-B report.
     Cat021(Cat021),
     /// A CAT062 system track.
     Cat062(Cat062),

@@ -1,12 +1,18 @@
 //! CAT021 ADS-B target reports (EUROCONTROL ASTERIX Part 12 Category 021,
-//! edition 2.1), decode only.
+//! edition 2.1; the UAP is the same in edition 2.6).
 //!
-//! Decoded: I021/010, /130, /131, /071, /072, /073, /075, /077, /080, /090
-//! (NUCr/NACv, NUCp/NIC and, when present, the first extension's NIC BARO,
-//! SIL, NACp). Every other item is skipped by its length rule.
+//! Decoded and encoded: I021/010, /071, /130, /131, /072, /080, /073, /075,
+//! /090 (NUCr/NACv, NUCp/NIC and, when present, the first extension's NIC
+//! BARO, SIL, NACp), /077. Every other item is skipped by its length rule.
+//!
+//! Times (edition 2.1): /071 time of applicability for position, /072 for
+//! velocity, /073 time of message reception for position, /075 for velocity,
+//! /077 time of ASTERIX report transmission; all 24-bit, LSB 1/128 s since
+//! midnight UTC. The high-precision receptions /074 and /076 are skipped.
 
-use crate::error::EncodeError;
-use crate::fields::{DataSource, TimeOfDay};
+use crate::adsb_quality::Quality;
+use crate::error::{EncodeError, ItemId};
+use crate::fields::{DataSource, TimeOfDay, quantise};
 use crate::record::{Category, RecordWriter};
 use crate::uap::{Format, Uap, UapSlot};
 
@@ -84,26 +90,38 @@ pub struct LatLon {
     pub lon_deg: f64,
 }
 
-/// I021/090 quality indicators: the first octet and the first extension.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct Quality {
-    /// NUCr or NACv (3 bits).
-    pub nac_v: u8,
-    /// NUCp or NIC (4 bits).
-    pub nic: u8,
-    /// First extension: NIC BARO (1 bit), SIL (2 bits), NACp (4 bits).
-    pub extension: Option<QualityExt>,
-}
+impl LatLon {
+    /// I021/130 LSB, degrees: 180 / 2^23.
+    pub const LSB_130_DEG: f64 = 180.0 / 8_388_608.0;
+    /// I021/131 LSB, degrees: 180 / 2^30.
+    pub const LSB_131_DEG: f64 = 180.0 / 1_073_741_824.0;
 
-/// I021/090 first extension.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub struct QualityExt {
-    /// NIC BARO.
-    pub nic_baro: bool,
-    /// SIL.
-    pub sil: u8,
-    /// NACp.
-    pub nac_p: u8,
+    /// The nearest counts of 180/2^`pow` degrees (I021/130: 24-bit, pow 23;
+    /// I021/131: 32-bit, pow 30). Latitude must lie in [−90°, 90°];
+    /// longitude is wrapped into [−180°, 180°) (so 180° is written as −180°).
+    fn counts(self, item: ItemId, pow: u32) -> Result<(i32, i32), EncodeError> {
+        // 180° in counts: 2^pow (23 or 30).
+        let top_count = 1i64 << pow;
+        let top = f64::from(1u32 << pow);
+        let lsb = 180.0 / top;
+        let lat = quantise(item, "latitude", self.lat_deg, lsb, -top / 2.0, top / 2.0)?;
+        if !self.lon_deg.is_finite() {
+            return Err(EncodeError::OutOfRange {
+                item,
+                what: "longitude",
+                value: self.lon_deg,
+            });
+        }
+        let wrapped = (self.lon_deg + 180.0).rem_euclid(360.0) - 180.0;
+        let lon = quantise(item, "longitude", wrapped, lsb, -top, top)?;
+        // Rounding just below 180° reaches +180°, which is written as −180°.
+        let lon = if lon == top_count { -lon } else { lon };
+        // Both in [−2^30, 2^30] ⊂ i32 by the checks above.
+        Ok((
+            i32::try_from(lat).unwrap_or(0),
+            i32::try_from(lon).unwrap_or(0),
+        ))
+    }
 }
 
 /// A CAT021 ADS-B report: the decoded items, each `None` when absent.
@@ -131,6 +149,10 @@ pub struct Cat021 {
     pub quality: Option<Quality>,
 }
 
+fn id(name: &'static str) -> ItemId {
+    ItemId { cat: 21, name }
+}
+
 fn signed(b: &[u8]) -> f64 {
     // Big-endian two's complement of 3 or 4 octets, sign-extended via the top byte.
     let mut v = i64::from(b[0] as i8);
@@ -150,8 +172,6 @@ impl Category for Cat021 {
     };
 
     fn decode_item(&mut self, frn: usize, b: &[u8]) -> Result<(), &'static str> {
-        let lsb23 = 180.0 / f64::from(1u32 << 23);
-        let lsb30 = 180.0 / f64::from(1u32 << 30);
         match frn {
             1 => {
                 self.source = Some(DataSource {
@@ -162,39 +182,72 @@ impl Category for Cat021 {
             5 => self.t_position = Some(TimeOfDay::read(b)),
             6 => {
                 self.position = Some(LatLon {
-                    lat_deg: signed(&b[0..3]) * lsb23,
-                    lon_deg: signed(&b[3..6]) * lsb23,
+                    lat_deg: signed(&b[0..3]) * LatLon::LSB_130_DEG,
+                    lon_deg: signed(&b[3..6]) * LatLon::LSB_130_DEG,
                 });
             }
             7 => {
                 self.position_hr = Some(LatLon {
-                    lat_deg: signed(&b[0..4]) * lsb30,
-                    lon_deg: signed(&b[4..8]) * lsb30,
+                    lat_deg: signed(&b[0..4]) * LatLon::LSB_131_DEG,
+                    lon_deg: signed(&b[4..8]) * LatLon::LSB_131_DEG,
                 });
             }
             8 => self.t_velocity = Some(TimeOfDay::read(b)),
             11 => self.target_address = Some(u32::from_be_bytes([0, b[0], b[1], b[2]])),
             12 => self.t_rx_position = Some(TimeOfDay::read(b)),
             14 => self.t_rx_velocity = Some(TimeOfDay::read(b)),
-            17 => {
-                self.quality = Some(Quality {
-                    nac_v: b[0] >> 5,
-                    nic: (b[0] >> 1) & 0x0f,
-                    extension: b.get(1).map(|e| QualityExt {
-                        nic_baro: e & 0x80 != 0,
-                        sil: (e >> 5) & 3,
-                        nac_p: (e >> 1) & 0x0f,
-                    }),
-                });
-            }
+            17 => self.quality = Some(Quality::read(b)),
             28 => self.t_report = Some(TimeOfDay::read(b)),
             _ => {}
         }
         Ok(())
     }
 
-    /// CAT021 is decoded only.
-    fn encode_items(&self, _w: &mut RecordWriter) -> Result<(), EncodeError> {
-        Err(EncodeError::Unsupported { cat: 21 })
+    fn encode_items(&self, w: &mut RecordWriter) -> Result<(), EncodeError> {
+        if let Some(s) = self.source {
+            w.put(1, &[s.sac, s.sic])?;
+        }
+        if let Some(t) = self.t_position {
+            w.put(5, &t.bytes())?;
+        }
+        if let Some(p) = self.position {
+            let (lat, lon) = p.counts(id("130"), 23)?;
+            let (a, b) = (lat.to_be_bytes(), lon.to_be_bytes());
+            w.put(6, &[a[1], a[2], a[3], b[1], b[2], b[3]])?;
+        }
+        if let Some(p) = self.position_hr {
+            let (lat, lon) = p.counts(id("131"), 30)?;
+            let (a, b) = (lat.to_be_bytes(), lon.to_be_bytes());
+            w.put(7, &[a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]])?;
+        }
+        if let Some(t) = self.t_velocity {
+            w.put(8, &t.bytes())?;
+        }
+        if let Some(a) = self.target_address {
+            if a > 0x00ff_ffff {
+                return Err(EncodeError::OutOfRange {
+                    item: id("080"),
+                    what: "24-bit target address",
+                    value: f64::from(a),
+                });
+            }
+            let [_, x, y, z] = a.to_be_bytes();
+            w.put(11, &[x, y, z])?;
+        }
+        if let Some(t) = self.t_rx_position {
+            w.put(12, &t.bytes())?;
+        }
+        if let Some(t) = self.t_rx_velocity {
+            w.put(14, &t.bytes())?;
+        }
+        if let Some(q) = self.quality {
+            let mut b = [0u8; 2];
+            let n = q.bytes(&mut b);
+            w.put(17, &b[..n])?;
+        }
+        if let Some(t) = self.t_report {
+            w.put(28, &t.bytes())?;
+        }
+        Ok(())
     }
 }

@@ -127,6 +127,22 @@ impl DecodeError {
         }
     }
 
+    /// The reason's name (the variant), for counting skips by reason.
+    #[must_use]
+    pub fn reason(&self) -> &'static str {
+        match self {
+            Self::TruncatedHeader { .. } => "TruncatedHeader",
+            Self::BlockLengthTooShort { .. } => "BlockLengthTooShort",
+            Self::BlockLengthExceedsInput { .. } => "BlockLengthExceedsInput",
+            Self::UnknownCategory { .. } => "UnknownCategory",
+            Self::FspecUnterminated { .. } => "FspecUnterminated",
+            Self::EmptyRecord { .. } => "EmptyRecord",
+            Self::UndefinedFrn { .. } => "UndefinedFrn",
+            Self::ItemOverrun { .. } => "ItemOverrun",
+            Self::InvalidItem { .. } => "InvalidItem",
+        }
+    }
+
     /// The item the error refers to, if any.
     #[must_use]
     pub fn item(&self) -> Option<ItemId> {
@@ -158,12 +174,6 @@ pub enum EncodeError {
         cat: u8,
         /// Length the block would have.
         len: usize,
-    },
-    /// The category is decoded only.
-    #[error("CAT{cat:03} encoding is not supported (decode only)")]
-    Unsupported {
-        /// Category.
-        cat: u8,
     },
     /// Items were added out of FRN order or the FRN is not in the UAP.
     #[error("CAT{cat:03}: FRN {frn} added out of order or not in the UAP")]

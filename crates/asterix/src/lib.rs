@@ -2,7 +2,8 @@
 //! Exchange) codec for Argus: data-block and record framing, and the items a
 //! tracker needs of CAT048 (monoradar target reports), CAT034 (north-marker
 //! and sector-crossing messages) and CAT062 (system tracks), decoded and
-//! encoded, and of CAT021 (ADS-B reports), decoded.
+//! encoded, and of CAT021 (ADS-B reports), decoded and encoded, with NACp
+//! turned into a position covariance.
 //!
 //! # Editions
 //! - Framing: EUROCONTROL ASTERIX Part 1 (data block: CAT, 16-bit LEN, records;
@@ -11,8 +12,10 @@
 //! - CAT048: ASTERIX Part 4 Category 048, edition 1.31 (UAP FRN 1–28). The
 //!   items decoded have the same layout from edition 1.21 on.
 //! - CAT034: ASTERIX Part 2b Category 034, edition 1.29 (UAP FRN 1–14).
-//! - CAT021: ASTERIX Part 12 Category 021, edition 2.1 (UAP FRN 1–49),
-//!   decode only: I021/010, /071–/073, /075, /077, /080, /090, /130, /131.
+//! - CAT021: ASTERIX Part 12 Category 021, edition 2.1 (UAP FRN 1–49, the
+//!   same in edition 2.6): I021/010, /071–/073, /075, /077, /080, /090,
+//!   /130, /131 decoded and encoded; NACp → covariance and NIC → Rc per
+//!   RTCA DO-242A / DO-260B ([`Quality`]).
 //! - CAT062: ASTERIX Part 9 Category 062, edition 1.18 (UAP FRN 1–35):
 //!   I062/010, /040, /070, /100, /105, /185 decoded and encoded.
 //!
@@ -60,6 +63,7 @@
 //! # Ok::<(), argus_asterix::EncodeError>(())
 //! ```
 
+mod adsb_quality;
 mod block;
 mod cat021;
 mod cat034;
@@ -67,11 +71,14 @@ mod cat048;
 mod cat062;
 mod error;
 mod fields;
+pub mod mutation;
 mod record;
+pub mod samples;
 mod uap;
 
+pub use adsb_quality::{Quality, QualityExt, R95_PER_SIGMA, containment_radius_m, epu_m};
 pub use block::{Decoded, Record, Skip, decode, encode_block};
-pub use cat021::{Cat021, LatLon, Quality, QualityExt};
+pub use cat021::{Cat021, LatLon};
 pub use cat034::{Cat034, MessageType, RotationPeriod, Sector};
 pub use cat048::{
     CartesianPosition, Cat048, FlightLevel, MeasuredPolar, Mode3A, PolarVelocity, ReportDescriptor,
