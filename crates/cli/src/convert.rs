@@ -10,9 +10,12 @@
 //! - CAT062 (a file without CAT048 plots) → the tracks CSV `t,track,x,vx,y,vy,status`
 //!   that `argus score` reads; a tracks CSV (a header with `track`) → CAT062 of its
 //!   confirmed rows.
+//! - CAT021 (a file with neither) → the ADS-B CSV `timestamp,icao24,latitude,longitude,
+//!   sigma_position` that `argus-adsb` reads ([`adsb_csv`]).
 
 use std::path::Path;
 
+use crate::asterix_io::adsb::adsb_csv;
 use crate::asterix_io::encode::{self, Container, Sweep};
 use crate::asterix_io::plots::radar_data;
 use crate::asterix_io::tracks::{encode_tracks, tracks_csv};
@@ -42,11 +45,21 @@ pub(crate) fn run(
             if data.plots.is_empty() {
                 let (text, rows, incomplete) = tracks_csv(&s);
                 if rows == 0 {
-                    return Err(CliError::Usage(format!(
-                        "{}: no CAT048 report with I048/010, /140 and /040 and no CAT062 track with /070, /040, /100 and /185 ({} records; CAT021 is not converted yet)",
-                        input.display(),
+                    let (text, rows, incomplete) = adsb_csv(&s);
+                    if rows == 0 {
+                        return Err(CliError::Usage(format!(
+                            "{}: no CAT048 report with I048/010, /140 and /040, no CAT062 track with /070, /040, /100 and /185 and no CAT021 report with /071, /080 and /130 or /131 ({} records)",
+                            input.display(),
+                            s.records.len()
+                        )));
+                    }
+                    write_atomic(output, text.as_bytes())?;
+                    lines.push(format!(
+                        "wrote {} ({rows} ADS-B rows from {} records; {incomplete} incomplete CAT021 reports)",
+                        output.display(),
                         s.records.len()
-                    )));
+                    ));
+                    return Ok(lines);
                 }
                 write_atomic(output, text.as_bytes())?;
                 lines.push(format!(

@@ -296,3 +296,88 @@ fn tracks_csv_round_trips_through_cat062() {
     std::fs::write(d.join("v.csv"), "t,track,x,vx,y,vy\n0,1,0,9000,0,0\n").unwrap();
     assert!(fails(&["convert", "v.csv", "v.ast"], d).contains("vx 9000"));
 }
+
+#[test]
+fn cat021_reports_convert_to_the_adsb_csv_the_adsb_reader_reads() {
+    use argus_asterix::{Cat021, DataSource, LatLon, Quality, QualityExt};
+    // Three reports: high-resolution position and NACp 9 (EPU 30 m: σ = 30 / 2.4477 =
+    // 12.26 m per axis), the coarse position only and no NACp, and one without a target
+    // address (not converted, counted).
+    let hr = LatLon {
+        lat_deg: 400_000_000.0 * LatLon::LSB_131_DEG,
+        lon_deg: 10_000_000.0 * LatLon::LSB_131_DEG,
+    };
+    let coarse = LatLon {
+        lat_deg: 2_000_000.0 * LatLon::LSB_130_DEG,
+        lon_deg: -300_000.0 * LatLon::LSB_130_DEG,
+    };
+    let a = Cat021 {
+        source: Some(DataSource { sac: 1, sic: 2 }),
+        t_position: Some(TimeOfDay(128 * 36_000)),
+        position: Some(coarse),
+        position_hr: Some(hr),
+        target_address: Some(0x3c_4a_5b),
+        quality: Some(Quality {
+            nac_v: 1,
+            nic: 8,
+            extension: Some(QualityExt {
+                nic_baro: true,
+                sil: 3,
+                nac_p: 9,
+            }),
+        }),
+        ..Cat021::default()
+    };
+    let b = Cat021 {
+        t_position: Some(TimeOfDay(128 * 36_001 + 64)),
+        position_hr: None,
+        quality: None,
+        target_address: Some(0x00_00_0f),
+        ..a
+    };
+    let c = Cat021 {
+        target_address: None,
+        ..a
+    };
+    let mut bytes = Vec::new();
+    argus_asterix::encode_block(&[a, b, c], &mut bytes)
+        .map_err(|e| e.to_string())
+        .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("adsb.ast"), &bytes).unwrap();
+    let o = argus(&["convert", "adsb.ast", "adsb.csv"], dir.path());
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        stdout.contains("2 ADS-B rows") && stdout.contains("1 incomplete CAT021"),
+        "{stdout}"
+    );
+    let text = std::fs::read_to_string(dir.path().join("adsb.csv")).unwrap();
+    let rows = argus_adsb::read_csv(text.as_bytes(), argus_adsb::EpochUnit::Seconds).unwrap();
+    assert_eq!(rows.len(), 2);
+    assert_eq!(rows[0].icao24, "3c4a5b");
+    assert_eq!(rows[1].icao24, "00000f");
+    // Times of applicability in seconds (1/128 s LSB: exact), positions exactly the
+    // items' grid values (the high-resolution one when present).
+    assert_eq!(rows[0].time.to_bits(), 36_000.0_f64.to_bits());
+    assert_eq!(rows[1].time.to_bits(), 36_001.5_f64.to_bits());
+    assert_eq!(rows[0].latitude.unwrap().to_bits(), hr.lat_deg.to_bits());
+    assert_eq!(rows[0].longitude.unwrap().to_bits(), hr.lon_deg.to_bits());
+    assert_eq!(
+        rows[1].latitude.unwrap().to_bits(),
+        coarse.lat_deg.to_bits()
+    );
+    assert_eq!(
+        rows[1].longitude.unwrap().to_bits(),
+        coarse.lon_deg.to_bits()
+    );
+    // σ from NACp 9 (EPU < 30 m, DO-242A), empty without NACp.
+    let sigma: Vec<&str> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    let s0: f64 = sigma[0].parse().unwrap();
+    assert!((s0 - 30.0 / 2.447_746_830_680_816).abs() < 1e-9, "{s0}");
+    assert_eq!(sigma[1], "");
+}

@@ -123,12 +123,7 @@ fn conditional_lambda_predicts_the_simulated_delays_per_switch() {
         }
         for i in 0..n {
             let v = &stats.delays[i];
-            let obs = |lim: f64| {
-                v.iter()
-                    .filter(|d| d.is_some_and(|d| d <= lim + 1e-9))
-                    .count() as f64
-                    / v.len() as f64
-            };
+            let obs = |lim: f64| v.within(lim) as f64 / v.runs() as f64;
             let (o5, o7) = (obs(0.5), obs(0.7));
             eprintln!(
                 "{name} switch {i}: within 0.5 s derived {:.3} observed {o5:.3}; within 0.7 s {:.3} / {o7:.3}; mean {:.3} / {:.3} s",
@@ -139,7 +134,7 @@ fn conditional_lambda_predicts_the_simulated_delays_per_switch() {
             );
             // Within 3 binomial standard deviations of the derived chance (the spread of
             // a sum of Bernoulli trials with unequal p_i is at most that of equal ones).
-            let sd = |p: f64| (p * (1.0 - p) / v.len() as f64).sqrt();
+            let sd = |p: f64| (p * (1.0 - p) / v.runs() as f64).sqrt();
             assert!(
                 (o5 - p5[i]).abs() <= 3.0 * sd(p5[i]),
                 "{name} {i}: {o5} vs {}",

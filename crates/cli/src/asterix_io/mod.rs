@@ -8,6 +8,7 @@
 //! configuration: `sensor = 256 · SAC + SIC` (so sensor 1 is SAC 0, SIC 1). `argus track`
 //! matches a `[[sensor]]` by its `sac`, `sic` keys, or by that mapping of its `id`.
 
+pub(crate) mod adsb;
 pub(crate) mod encode;
 pub(crate) mod plots;
 pub(crate) mod tracks;
