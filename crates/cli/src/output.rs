@@ -12,27 +12,9 @@ use crate::error::CliError;
 /// # Errors
 /// [`CliError::Io`] when the directory cannot be created or the file written or renamed.
 pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, e))?;
-    let name = path
-        .file_name()
-        .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if let Err(e) = result {
-        // Best effort: do not leave the temporary behind.
-        let _ = std::fs::remove_file(&tmp);
-        return Err(CliError::io(path, e));
-    }
-    Ok(())
+    let mut file = AtomicFile::create(path)?;
+    file.write(bytes)?;
+    file.commit()
 }
 
 /// An output file written as a stream: to a temporary sibling file, renamed over `path`
