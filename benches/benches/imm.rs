@@ -70,7 +70,11 @@ fn benches(c: &mut Criterion) {
             .map(|k| {
                 #[allow(clippy::cast_precision_loss)]
                 let dt = 5.0 + 1e-3 * ((k * 7919) % 13) as f64;
-                let turn = if (70..100).contains(&k) { 3.0_f64.to_radians() } else { 0.0 };
+                let turn = if (70..100).contains(&k) {
+                    3.0_f64.to_radians()
+                } else {
+                    0.0
+                };
                 heading += turn * dt;
                 x += 90.0 * heading.cos() * dt;
                 y += 90.0 * heading.sin() * dt;

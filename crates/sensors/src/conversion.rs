@@ -233,7 +233,11 @@ impl UnbiasedPolarConversion {
     /// [`SensorError::NonFinite`] for a non-finite azimuth, [`SensorError::Math`] for a
     /// non-finite result.
     #[inline]
-    pub fn convert(&self, range: f64, azimuth: f64) -> Result<ConvertedMeasurement<2>, SensorError> {
+    pub fn convert(
+        &self,
+        range: f64,
+        azimuth: f64,
+    ) -> Result<ConvertedMeasurement<2>, SensorError> {
         let r = positive(range, "range")?;
         let t = finite(azimuth, "azimuth")?;
         let out = self.formula(r, t);
@@ -513,7 +517,12 @@ mod tests {
             Err(SensorError::NonFinite { .. })
         ));
         let conv = UnbiasedPolarConversion::new(10.0, 0.01).unwrap();
-        for (r, t) in [(0.0, 0.1), (-5.0, 0.1), (f64::NAN, 0.1), (1e3, f64::INFINITY)] {
+        for (r, t) in [
+            (0.0, 0.1),
+            (-5.0, 0.1),
+            (f64::NAN, 0.1),
+            (1e3, f64::INFINITY),
+        ] {
             assert_eq!(
                 conv.convert(r, t).unwrap_err(),
                 convert_polar(r, t, 10.0, 0.01, ConversionMethod::Unbiased).unwrap_err()
