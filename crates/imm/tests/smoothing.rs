@@ -162,6 +162,21 @@ fn gimpo_plots(
         .collect()
 }
 
+/// The two-point start of the IMM track from the first two plots (unbiased conversion,
+/// true R, μ₀ uniform): the common start `g` and the track at the second plot's time.
+fn two_point_start(
+    imm: &Imm<Kf<PlanarModel>, 4, 3>,
+    plots: &[(f64, PolarMeasurement)],
+    var: &NoiseVariances,
+) -> (Gaussian<4>, ImmTrack<4, 3>) {
+    let ((t1, p1), (t2, p2)) = (plots[0], plots[1]);
+    let (z1, r1) = unbiased_conversion(&p1, var).unwrap();
+    let (z2, r2) = unbiased_conversion(&p2, var).unwrap();
+    let g = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1).unwrap();
+    let start = ImmEstimate::from_common(g, [1.0 / 3.0; 3]).unwrap();
+    (g, ImmTrack::new(*imm.markov(), t2, start).unwrap())
+}
+
 fn gimpo_campaign(weights: PairWeights) -> Campaign {
     // Seed 000's scene (`gimpo_scene`, σr = 70 m, σθ = 0.08°); the paper's IMM with the true R on unbiased converted plots, two-point
     // start, μ₀ uniform. 30 seeded runs.
@@ -175,12 +190,7 @@ fn gimpo_campaign(weights: PairWeights) -> Campaign {
     let mut acc: Vec<[f64; 9]> = Vec::new();
     for run in 0..runs {
         let plots = gimpo_plots(&truth, &radar, 0, run);
-        let ((t1, p1), (t2, p2)) = (plots[0], plots[1]);
-        let (z1, r1) = unbiased_conversion(&p1, &var).unwrap();
-        let (z2, r2) = unbiased_conversion(&p2, &var).unwrap();
-        let g = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1).unwrap();
-        let start = ImmEstimate::from_common(g, [1.0 / 3.0; 3]).unwrap();
-        let mut track = ImmTrack::new(*imm.markov(), t2, start).unwrap();
+        let (g, mut track) = two_point_start(&imm, &plots, &var);
         track.reserve(plots.len());
         for (t, pl) in &plots[2..] {
             let (m, z) = conv.convert(pl, &var).unwrap();
@@ -414,12 +424,8 @@ fn gimpo_reference(
     let mut per: Vec<Vec<[f64; 4]>> = vec![Vec::new(); checkpoints.len()];
     for run in 0..runs {
         let plots = gimpo_plots(&truth, &radar, seed, run);
-        let ((t1, p1), (t2, p2)) = (plots[0], plots[1]);
-        let (z1, r1) = unbiased_conversion(&p1, &var).unwrap();
-        let (z2, r2) = unbiased_conversion(&p2, &var).unwrap();
-        let g = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1).unwrap();
-        let start = ImmEstimate::from_common(g, [1.0 / 3.0; 3]).unwrap();
-        let mut track = ImmTrack::new(*imm.markov(), t2, start).unwrap();
+        let (g, mut track) = two_point_start(&imm, &plots, &var);
+        let (t2, p2) = plots[1];
         let mut times = vec![t2];
         let mut meas = vec![conv.convert(&p2, &var).unwrap()];
         for (t, pl) in &plots[2..] {

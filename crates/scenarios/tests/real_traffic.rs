@@ -5,16 +5,10 @@
 // Test helpers outside #[test] functions may unwrap: a failure is a test failure.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use argus_scenarios::{NoProgress, Params, find};
+mod common;
 
-fn row(out: &argus_scenarios::RunOutput, key: &str) -> f64 {
-    out.report
-        .rows
-        .iter()
-        .find(|r| r.key == key)
-        .unwrap_or_else(|| panic!("no row {key}"))
-        .ours
-}
+use argus_scenarios::{NoProgress, Params, find};
+use common::row;
 
 #[test]
 fn every_configuration_tracks_the_first_quarter_hour() {

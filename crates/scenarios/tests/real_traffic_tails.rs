@@ -16,9 +16,12 @@
 // Test helpers outside #[test] functions may unwrap: a failure is a test failure.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
+mod common;
+
 use std::collections::BTreeMap;
 
-use argus_scenarios::{NoProgress, Params, RunOutput, find};
+use argus_scenarios::{NoProgress, Params, find};
+use common::row;
 
 /// The scenario's radar: revolution period (s) and maximum range (m), its defaults.
 const PERIOD: f64 = 5.0;
@@ -26,15 +29,6 @@ const MAX_RANGE: f64 = 150_000.0;
 /// The scorer's `max_truth_gap` (docs/scoring.md): truth samples further apart are not
 /// interpolated across, so a gap ends the truth's presence.
 const MAX_TRUTH_GAP: f64 = 10.0;
-
-fn row(out: &RunOutput, key: &str) -> f64 {
-    out.report
-        .rows
-        .iter()
-        .find(|r| r.key == key)
-        .unwrap_or_else(|| panic!("no row {key}"))
-        .ours
-}
 
 /// Truth ends inside the coverage before the hour's last sample, and the truth's time
 /// inside the coverage (s), from the scenario's own truth of seed 1.
