@@ -3,7 +3,11 @@
 //! the errors of bad sequences.
 
 // A test binary: a panic on an unexpected error is the failure report.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
+
+// The Gibbs reference smoother of the jump-Markov model (shared with `smoothing_exact.rs`).
+#[allow(dead_code)]
+mod gibbs;
 
 use argus_core_math::{Gaussian, Matrix, Vector, anees_interval};
 use argus_filters::{Kf, RtsTrack, SmoothError, two_point_cv2};
@@ -93,13 +97,13 @@ struct Campaign {
     anees: f64,
 }
 
-fn gimpo_campaign(weights: PairWeights) -> Campaign {
-    // Seed 000's scene (crates/scenarios/src/gimpo.rs): the Table 1 approach from
-    // (−60 km, −20 km) at 90 m/s, a rotating beam of period 5 s at the origin, σr = 70 m,
-    // σθ = 0.08°; the paper's IMM with the true R on unbiased converted plots, two-point
-    // start, μ₀ uniform. 30 seeded runs.
-    let runs = 30_u64;
-    let (sigma_r, sigma_th) = (70.0, 0.08_f64.to_radians());
+/// Seed 000's plot noise: σr = 70 m, σθ = 0.08°.
+const SIGMA_R: f64 = 70.0;
+const SIGMA_TH_DEG: f64 = 0.08;
+
+/// Seed 000's scene (crates/scenarios/src/gimpo.rs): the Table 1 approach from
+/// (−60 km, −20 km) at 90 m/s and a rotating beam of period 5 s at the origin.
+fn gimpo_scene() -> (Trajectory, Truth, SensorSpec) {
     let segments = SEGMENTS
         .iter()
         .map(|&(duration, w)| {
@@ -125,8 +129,8 @@ fn gimpo_campaign(weights: PairWeights) -> Campaign {
         SensorId(1),
         Vector::<3>::zeros(),
         SensorKind::Polar {
-            sigma_range: sigma_r,
-            sigma_azimuth: sigma_th,
+            sigma_range: SIGMA_R,
+            sigma_azimuth: SIGMA_TH_DEG.to_radians(),
         },
         Schedule::RotatingBeam {
             period: 5.0,
@@ -134,29 +138,43 @@ fn gimpo_campaign(weights: PairWeights) -> Campaign {
         },
     )
     .unwrap();
+    (traj, truth, radar)
+}
+
+/// Run `run` of campaign seed `seed`: the polar plots in time order (as `argus run gimpo`
+/// draws them, from `run_rng(seed, run)`).
+fn gimpo_plots(
+    truth: &Truth,
+    radar: &SensorSpec,
+    seed: u64,
+    run: u64,
+) -> Vec<(f64, PolarMeasurement)> {
+    let mut rng = run_rng(seed, run);
+    generate_plots(truth, std::slice::from_ref(radar), &mut rng)
+        .unwrap()
+        .iter()
+        .filter_map(|pl| match pl.plot.measurement() {
+            Measurement::Polar(m) => PolarMeasurement::new(m.range(), m.azimuth())
+                .ok()
+                .map(|x| (pl.plot.time(), x)),
+            _ => None,
+        })
+        .collect()
+}
+
+fn gimpo_campaign(weights: PairWeights) -> Campaign {
+    // Seed 000's scene (`gimpo_scene`, σr = 70 m, σθ = 0.08°); the paper's IMM with the true R on unbiased converted plots, two-point
+    // start, μ₀ uniform. 30 seeded runs.
+    let runs = 30_u64;
+    let (traj, truth, radar) = gimpo_scene();
     let imm = paper_imm();
-    let var = NoiseVariances::from_sigmas(sigma_r, sigma_th).unwrap();
+    let var = NoiseVariances::from_sigmas(SIGMA_R, SIGMA_TH_DEG.to_radians()).unwrap();
     let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
     // Per step: Σ NEES smoothed, Σ NEES filtered, Σ squared position error smoothed,
     // filtered, and the time.
     let mut acc: Vec<[f64; 9]> = Vec::new();
     for run in 0..runs {
-        let mut rng = run_rng(0, run);
-        let plots: Vec<(f64, PolarMeasurement)> =
-            generate_plots(&truth, std::slice::from_ref(&radar), &mut rng)
-                .unwrap()
-                .iter()
-                .filter_map(|pl| match pl.plot.measurement() {
-                    Measurement::Polar(m) => {
-                        let (range, azimuth) = (m.range(), m.azimuth());
-
-                        PolarMeasurement::new(range, azimuth)
-                            .ok()
-                            .map(|x| (pl.plot.time(), x))
-                    }
-                    _ => None,
-                })
-                .collect();
+        let plots = gimpo_plots(&truth, &radar, 0, run);
         let ((t1, p1), (t2, p2)) = (plots[0], plots[1]);
         let (z1, r1) = unbiased_conversion(&p1, &var).unwrap();
         let (z2, r2) = unbiased_conversion(&p2, &var).unwrap();
@@ -315,11 +333,12 @@ fn smoothed_imm_on_the_gimpo_trajectory() {
     // What holds (measured: 0.653 for the backward-likelihood pass, 0.952 expectation
     // correction, 4.12 Kim): the smoothed error is below the filtered one and below the
     // other weightings'. The goal (≤ 0.6) is NOT met, and the smoothed ANEES (7.0)
-    // is NOT inside its band; both are reported, not asserted (docs/smoothing.md). Why:
-    // an RTS smoother told the true sequence of the IMM's own modes (CV on the legs, CT
-    // ±3 deg/s in the turns) reaches 0.643 (measured), so no smoother with this model set
-    // and one mode per step does much better; asserted: within 5 % of it, and that
-    // reference above the goal. Only the true turn rates give 0.426 (measured).
+    // is NOT inside its band; both are reported, not asserted (docs/smoothing.md). An RTS
+    // smoother told the true sequence of the IMM's own modes (CV on the legs, CT ±3 deg/s
+    // in the turns) reaches 0.643 (measured; asserted: the IMM smoother within 5 % of it,
+    // and it above the goal) — one mode history, NOT a bound: the near-exact posterior
+    // mean of the same model set reaches 0.596 on these runs
+    // (`gibbs_reference_on_gimpo_convergence`). Only the true turn rates give 0.426.
     assert!(bl.ratio < 1.0, "smoothed / filtered RMS {}", bl.ratio);
     assert!(bl.ratio < ec && ec < kim, "{} vs {ec} vs {kim}", bl.ratio);
     assert!(
@@ -330,6 +349,235 @@ fn smoothed_imm_on_the_gimpo_trajectory() {
     );
     assert!(bl.nearest_ratio > 0.6 && bl.true_model_ratio < 0.6);
     assert!(bl.anees.is_finite());
+}
+
+/// The Gibbs reference at one number of recorded sweeps: smoothed / filtered-IMM RMS
+/// position error (both chains pooled, and each chain alone) and ANEES (all / straight /
+/// turns).
+#[derive(Debug)]
+struct ReferencePoint {
+    sweeps: usize,
+    ratio: f64,
+    chain_ratios: [f64; 2],
+    anees: [f64; 3],
+}
+
+/// What [`gimpo_reference`] measured: the reference per checkpoint, and the IMM smoother's
+/// ratio and ANEES (all / straight / turns) on the same runs.
+struct Reference {
+    points: Vec<ReferencePoint>,
+    imm_ratio: f64,
+    imm_anees: [f64; 3],
+}
+
+/// The IMM smoother's most probable mode per step, made a sequence of nonzero prior
+/// (a CT+ → CT− step, π = 0, becomes CV).
+fn imm_mode_sequence(s: &[argus_imm::ImmSmoothed<4, 3>], pi: &[[f64; 3]; 3]) -> Vec<usize> {
+    let mut seq: Vec<usize> = s
+        .iter()
+        .map(|x| {
+            (0..3)
+                .max_by(|&a, &b| x.mode_probabilities[a].total_cmp(&x.mode_probabilities[b]))
+                .unwrap()
+        })
+        .collect();
+    for k in 1..seq.len() {
+        if pi[seq[k - 1]][seq[k]] == 0.0 {
+            seq[k] = 0;
+        }
+    }
+    seq
+}
+
+/// The Gibbs reference smoother ([`gibbs`]) of seed 000's jump-Markov model — the paper
+/// IMM's three models, Markov matrix, Q, the true R on the unbiased converted plots (the
+/// same per-step measurement model the IMM updates with), the two-point start with μ₀
+/// uniform — over `runs` runs of campaign seed `seed`; two chains per run (one from the
+/// IMM smoother's most probable modes, one from all CV), `burn` sweeps discarded, then
+/// estimates at each number of recorded sweeps in `checkpoints` (increasing).
+fn gimpo_reference(
+    seed: u64,
+    runs: u64,
+    block: usize,
+    burn: usize,
+    checkpoints: &[usize],
+) -> Reference {
+    let (traj, truth, radar) = gimpo_scene();
+    let imm = paper_imm();
+    let m = imm.markov().matrix();
+    let pi: [[f64; 3]; 3] = core::array::from_fn(|i| core::array::from_fn(|j| m[(i, j)]));
+    let var = NoiseVariances::from_sigmas(SIGMA_R, SIGMA_TH_DEG.to_radians()).unwrap();
+    let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
+    // Per step: time, Σ se filtered, Σ se IMM smoothed, Σ NEES IMM smoothed; per
+    // checkpoint Σ se pooled, Σ NEES pooled, Σ se chain 0, Σ se chain 1.
+    let mut common: Vec<[f64; 4]> = Vec::new();
+    let mut per: Vec<Vec<[f64; 4]>> = vec![Vec::new(); checkpoints.len()];
+    for run in 0..runs {
+        let plots = gimpo_plots(&truth, &radar, seed, run);
+        let ((t1, p1), (t2, p2)) = (plots[0], plots[1]);
+        let (z1, r1) = unbiased_conversion(&p1, &var).unwrap();
+        let (z2, r2) = unbiased_conversion(&p2, &var).unwrap();
+        let g = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1).unwrap();
+        let start = ImmEstimate::from_common(g, [1.0 / 3.0; 3]).unwrap();
+        let mut track = ImmTrack::new(*imm.markov(), t2, start).unwrap();
+        let mut times = vec![t2];
+        let mut meas = vec![conv.convert(&p2, &var).unwrap()];
+        for (t, pl) in &plots[2..] {
+            let (mm, z) = conv.convert(pl, &var).unwrap();
+            track.step(&imm, *t, &mm, &z).unwrap();
+            times.push(*t);
+            meas.push((mm, z));
+        }
+        let smoothed = track.smooth().unwrap();
+        let problem = gibbs::Problem {
+            filters: imm.filters(),
+            pi,
+            mu0: [1.0 / 3.0; 3],
+            g0: g,
+            times: &times,
+            plots: &meas,
+        };
+        let mut chains = [
+            gibbs::Chain::new(&problem, imm_mode_sequence(&smoothed, &pi), 1000 * run + 1),
+            gibbs::Chain::new(&problem, vec![0; times.len()], 1000 * run + 2),
+        ];
+        for _ in 0..burn {
+            chains.iter_mut().for_each(|c| c.sweep(block, false));
+        }
+        let truth_at: Vec<Vector<4>> = times
+            .iter()
+            .map(|t| traj.state_at(*t).unwrap().state_2d())
+            .collect();
+        let se = |g: &Gaussian<4>, x: &Vector<4>| {
+            (g.mean()[0] - x[0]).powi(2) + (g.mean()[2] - x[2]).powi(2)
+        };
+        common.resize(times.len(), [0.0; 4]);
+        for (k, (st, sm)) in track.steps().iter().zip(&smoothed).enumerate() {
+            let x = &truth_at[k];
+            let c = &mut common[k];
+            c[0] = st.time();
+            c[1] += se(&st.filtered().combined().unwrap(), x);
+            c[2] += se(&sm.combined, x);
+            c[3] += sm.combined.mahalanobis_sq(x);
+        }
+        for (ci, &target) in checkpoints.iter().enumerate() {
+            while chains[0].sweeps() < target {
+                chains.iter_mut().for_each(|c| c.sweep(block, true));
+            }
+            let (pooled, _) = gibbs::pooled(&chains);
+            let (a, _) = gibbs::pooled(&chains[..1]);
+            let (b, _) = gibbs::pooled(&chains[1..]);
+            per[ci].resize(times.len(), [0.0; 4]);
+            for k in 0..times.len() {
+                let x = &truth_at[k];
+                let p = &mut per[ci][k];
+                p[0] += se(&pooled[k], x);
+                p[1] += pooled[k].mahalanobis_sq(x);
+                p[2] += se(&a[k], x);
+                p[3] += se(&b[k], x);
+            }
+        }
+    }
+    let nr = runs as f64;
+    let (t0, t1) = (common[0][0], common[common.len() - 1][0]);
+    let tail: Vec<usize> = (0..common.len())
+        .filter(|&k| common[k][0] >= t0 + 0.25 * (t1 - t0))
+        .collect();
+    let rms = |f: &dyn Fn(usize) -> f64| {
+        (tail.iter().map(|&k| f(k)).sum::<f64>() / (nr * tail.len() as f64)).sqrt()
+    };
+    let anees = |f: &dyn Fn(usize) -> f64| {
+        let part = |turn: Option<bool>| {
+            let sel: Vec<usize> = (0..common.len())
+                .filter(|&k| turn.is_none_or(|t| (true_rate(common[k][0]) != 0.0) == t))
+                .collect();
+            sel.iter().map(|&k| f(k) / nr).sum::<f64>() / sel.len() as f64
+        };
+        [part(None), part(Some(false)), part(Some(true))]
+    };
+    let rms_f = rms(&|k| common[k][1]);
+    let points = checkpoints
+        .iter()
+        .enumerate()
+        .map(|(ci, &sweeps)| ReferencePoint {
+            sweeps,
+            ratio: rms(&|k| per[ci][k][0]) / rms_f,
+            chain_ratios: [
+                rms(&|k| per[ci][k][2]) / rms_f,
+                rms(&|k| per[ci][k][3]) / rms_f,
+            ],
+            anees: anees(&|k| per[ci][k][1]),
+        })
+        .collect::<Vec<_>>();
+    let r = Reference {
+        imm_ratio: rms(&|k| common[k][2]) / rms_f,
+        imm_anees: anees(&|k| common[k][3]),
+        points,
+    };
+    eprintln!(
+        "gimpo, seed {seed}, {runs} runs: IMM smoother ratio {:.4}, ANEES {:.2} / {:.2} / {:.2} (all / straight / turns); filtered RMS {rms_f:.2} m",
+        r.imm_ratio, r.imm_anees[0], r.imm_anees[1], r.imm_anees[2]
+    );
+    for p in &r.points {
+        eprintln!(
+            "  Gibbs reference, blocks of {block}, 2 chains × {} sweeps (burn-in {burn}): ratio {:.4} (chains {:.4} / {:.4}), ANEES {:.2} / {:.2} / {:.2}",
+            p.sweeps,
+            p.ratio,
+            p.chain_ratios[0],
+            p.chain_ratios[1],
+            p.anees[0],
+            p.anees[1],
+            p.anees[2]
+        );
+    }
+    r
+}
+
+#[test]
+fn gibbs_reference_on_the_gimpo_trajectory() {
+    // The near-exact posterior mean of seed 000's jump-Markov model (the IMM's own three
+    // models, π, Q, true R, prior) against the IMM smoother on the same runs; reduced:
+    // 10 runs, blocks of 4, 2 chains × 50 sweeps after 20 of burn-in (the full table,
+    // 30 / 100 runs and 400–1 600 sweeps, is `gibbs_reference_on_gimpo_convergence`).
+    let r = gimpo_reference(0, 10, 4, 20, &[50]);
+    let p = &r.points[0];
+    // Measured: reference 0.621 (chains 0.6268 / 0.6267), IMM smoother 0.660 on these
+    // 10 runs; reference ANEES 7.12, turns 20.9. Asserted: (1) the two chains, started from
+    // the IMM smoother's modes and from all CV, agree within 0.01 (single-site sampling
+    // fails this: 0.65 against 0.76 after 1 600 sweeps on 30 runs); (2) the reference
+    // beats the IMM smoother by more than 0.02 (measured 0.039 here, 0.057 on 30 runs);
+    // (3) its ratio in [0.60, 0.64] (measured 0.621; the Monte Carlo spread between
+    // chains is 1e-4); (4) its ANEES in the turns above the 99 % band's upper end:
+    // the model set's posterior is over-confident there (docs/smoothing.md).
+    eprintln!("{p:?}");
+    assert!(
+        (p.chain_ratios[0] - p.chain_ratios[1]).abs() < 0.01,
+        "{:?}",
+        p.chain_ratios
+    );
+    assert!(
+        p.ratio < r.imm_ratio - 0.02,
+        "{} vs {}",
+        p.ratio,
+        r.imm_ratio
+    );
+    assert!((0.60..0.64).contains(&p.ratio), "{}", p.ratio);
+    let band = anees_interval(4, 10, 0.99).unwrap();
+    assert!(p.anees[2] > band.upper, "{:?} vs {band:?}", p.anees);
+}
+
+#[test]
+#[ignore = "the convergence table of docs/smoothing.md: minutes; cargo test --release -- --ignored"]
+fn gibbs_reference_on_gimpo_convergence() {
+    // GIBBS_GIMPO="seed runs block burn checkpoint…" runs one configuration instead.
+    if let Ok(cfg) = std::env::var("GIBBS_GIMPO") {
+        let v: Vec<usize> = cfg.split_whitespace().map(|x| x.parse().unwrap()).collect();
+        gimpo_reference(v[0] as u64, v[1] as u64, v[2], v[3], &v[4..]);
+        return;
+    }
+    for block in [1, 4] {
+        gimpo_reference(0, 30, block, 50, &[25, 100, 400]);
+    }
 }
 
 #[test]
