@@ -60,6 +60,44 @@ fn benches(c: &mut Criterion) {
         });
     });
 
+    // A batch run as the Python `Imm.run` makes it (issue 20 (c)): 204 polar plots of a
+    // target at 60 km flying straight, then turning at 3°/s, then straight, one scan every
+    // ~5 s with jittered times; each plot converted (unbiased), one IMM cycle, the combined
+    // estimate and the mode probabilities written out.
+    let scan: Vec<(f64, PolarMeasurement)> = {
+        let (mut x, mut y, mut heading) = (-60_000.0_f64, -20_000.0_f64, 0.0_f64);
+        (0..204)
+            .map(|k| {
+                #[allow(clippy::cast_precision_loss)]
+                let dt = 5.0 + 1e-3 * ((k * 7919) % 13) as f64;
+                let turn = if (70..100).contains(&k) {
+                    3.0_f64.to_radians()
+                } else {
+                    0.0
+                };
+                heading += turn * dt;
+                x += 90.0 * heading.cos() * dt;
+                y += 90.0 * heading.sin() * dt;
+                (dt, PolarMeasurement::new(x.hypot(y), y.atan2(x)).unwrap())
+            })
+            .collect()
+    };
+    let mut out = vec![0.0; scan.len() * (4 + 16 + 3)];
+    g.bench_function("imm_cv_2ct_run_204_plots", |b| {
+        b.iter(|| {
+            let mut e = start();
+            for ((dt, plot), o) in scan.iter().zip(out.chunks_exact_mut(23)) {
+                let (m, z) = conv.convert(black_box(plot), &var).unwrap();
+                e = imm.step(&e, *dt, &m, &z).unwrap().estimate;
+                let c = e.combined().unwrap();
+                o[..4].copy_from_slice(c.mean().as_slice());
+                o[4..20].copy_from_slice(c.cov().as_slice());
+                o[20..].copy_from_slice(&e.mode_probabilities());
+            }
+            black_box(&out);
+        });
+    });
+
     let multi = MultiImm::new(
         paper_imm(),
         NoiseGrid::<5>::common(0.1).unwrap(),

@@ -29,21 +29,27 @@ pub(crate) struct Filter {
 /// The intervals before each plot: `times[0] - t0`, then the differences; time must not
 /// go backwards (equal times update twice without a prediction).
 pub(crate) fn intervals(times: &[f64], t0: f64) -> PyResult<Vec<f64>> {
-    let mut prev = t0;
+    // `dts[k] = times[k] − times[k − 1]` (`t0` before the first) in one pass the compiler
+    // vectorises (an exact-size map, no per-element capacity check or early exit), then one
+    // vectorised test for a negative interval; the offending index is looked for only
+    // then. The same subtractions as a step-by-step loop, so the same bits.
     let mut dts = Vec::with_capacity(times.len());
-    for (k, t) in times.iter().enumerate() {
-        if *t < prev {
-            return Err(input(if k == 0 {
-                format!("argument 'times': times[0] = {t} is before t0 = {prev}")
-            } else {
-                format!(
-                    "argument 'times': times[{k}] = {t} is before times[{}] = {prev} (time goes backwards)",
-                    k - 1
-                )
-            }));
-        }
-        dts.push(t - prev);
-        prev = *t;
+    if let Some(first) = times.first() {
+        dts.push(first - t0);
+        dts.extend(times[1..].iter().zip(times).map(|(t, p)| t - p));
+    }
+    if dts.iter().fold(false, |bad, d| bad | (*d < 0.0))
+        && let Some(k) = dts.iter().position(|d| *d < 0.0)
+    {
+        let (t, prev) = (times[k], if k == 0 { t0 } else { times[k - 1] });
+        return Err(input(if k == 0 {
+            format!("argument 'times': times[0] = {t} is before t0 = {prev}")
+        } else {
+            format!(
+                "argument 'times': times[{k}] = {t} is before times[{}] = {prev} (time goes backwards)",
+                k - 1
+            )
+        }));
     }
     Ok(dts)
 }

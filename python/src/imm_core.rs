@@ -10,7 +10,7 @@ use argus_imm::{
     NoiseVariances, UnbiasedConversion,
 };
 use argus_motion_models::PlanarModel;
-use argus_sensors::{CartesianPosition, PolarMeasurement};
+use argus_sensors::{CartesianPosition, PolarMeasurement, UnbiasedPolarConversion};
 
 /// The IMM of `R` Kalman filters on the planar models.
 pub(crate) type PlanarImm<const R: usize> = Imm<Kf<PlanarModel>, 4, R>;
@@ -36,6 +36,26 @@ pub(crate) struct ImmOut {
     pub(crate) mu: Vec<f64>,
     /// `(σ_range, σ_azimuth)` per step, for the noise estimators.
     pub(crate) noise: Option<Vec<f64>>,
+}
+
+impl ImmOut {
+    /// Empty outputs with room for `steps` steps of `modes` modes (and the noise estimate
+    /// when `noise`): no reallocation inside the run.
+    fn with_capacity(steps: usize, modes: usize, noise: bool) -> Self {
+        Self {
+            x: Vec::with_capacity(4 * steps),
+            p: Vec::with_capacity(16 * steps),
+            mu: Vec::with_capacity(modes * steps),
+            noise: noise.then(|| Vec::with_capacity(2 * steps)),
+        }
+    }
+}
+
+/// How a plain IMM's run reads its plots: Cartesian with a fixed `R`, or polar through the
+/// unbiased conversion (constants formed once) and the radar's position.
+enum Reader {
+    Cartesian(Matrix<2, 2>),
+    Polar(UnbiasedPolarConversion, Vector<2>),
 }
 
 /// Where a run failed.
@@ -112,23 +132,30 @@ impl<const R: usize> DynImm for PlainImm<R> {
         plots: &[f64],
     ) -> Result<ImmOut, ImmFail> {
         let mut est = start_estimate::<R>(start)?;
-        let mut out = ImmOut::default();
+        let mut out = ImmOut::with_capacity(dts.len(), R, false);
+        // The polar conversion's noise-only constants (its exponential) once per run, not
+        // per plot: the same arithmetic as `argus_scenarios::estimator::unbiased`
+        // (`convert_polar`), so the same bits.
+        let reader = match self.plots {
+            Plots::Cartesian(r) => Reader::Cartesian(r),
+            Plots::Polar {
+                sigma_range,
+                sigma_azimuth,
+                origin,
+            } => Reader::Polar(
+                UnbiasedPolarConversion::new(sigma_range, sigma_azimuth)
+                    .map_err(|e| fail(0, "SensorError", &e))?,
+                Vector::<2>::new(origin[0], origin[1]),
+            ),
+        };
         for (k, dt) in dts.iter().enumerate() {
-            let (z, r) = match self.plots {
-                Plots::Cartesian(r) => (Vector::<2>::new(plots[2 * k], plots[2 * k + 1]), r),
-                Plots::Polar {
-                    sigma_range,
-                    sigma_azimuth,
-                    origin,
-                } => {
-                    let (rel, r) = argus_scenarios::estimator::unbiased(
-                        plots[2 * k],
-                        plots[2 * k + 1],
-                        sigma_range,
-                        sigma_azimuth,
-                    )
-                    .map_err(|e| fail(k, "SensorError", &e))?;
-                    (rel + Vector::<2>::new(origin[0], origin[1]), r)
+            let (z, r) = match &reader {
+                Reader::Cartesian(r) => (Vector::<2>::new(plots[2 * k], plots[2 * k + 1]), *r),
+                Reader::Polar(conv, origin) => {
+                    let c = conv
+                        .convert(plots[2 * k], plots[2 * k + 1])
+                        .map_err(|e| fail(k, "SensorError", &e))?;
+                    (c.position + origin, c.covariance)
                 }
             };
             let meas = CartesianPosition::<4, 2>::cv(r).map_err(|e| fail(k, "SensorError", &e))?;
@@ -165,10 +192,7 @@ impl<const R: usize, const K: usize> DynImm for Multi<R, K> {
     ) -> Result<ImmOut, ImmFail> {
         let conv = conversion(self.origin)?;
         let mut est = MultiImmEstimate::<4, R, K>::new(start_estimate::<R>(start)?, self.reference);
-        let mut out = ImmOut {
-            noise: Some(Vec::with_capacity(2 * dts.len())),
-            ..ImmOut::default()
-        };
+        let mut out = ImmOut::with_capacity(dts.len(), R, true);
         for (k, dt) in dts.iter().enumerate() {
             let plot = polar(plots, k)?;
             est = self
@@ -210,10 +234,7 @@ impl<const R: usize> DynImm for Difference<R> {
         let mut est =
             DifferenceEstimate::new(start_estimate::<R>(start)?, self.initial, self.prior_count)
                 .map_err(|e| ImmFail::Start("prior_count".into(), e))?;
-        let mut out = ImmOut {
-            noise: Some(Vec::with_capacity(2 * dts.len())),
-            ..ImmOut::default()
-        };
+        let mut out = ImmOut::with_capacity(dts.len(), R, true);
         for (k, dt) in dts.iter().enumerate() {
             let plot = polar(plots, k)?;
             let (next, _) = self

@@ -257,8 +257,15 @@ fn reused_step<const N: usize, const M: usize, Me: MeasurementModel<N, M>>(
     };
     let residual = meas.residual(z, &meas.predict(&predicted));
     let correction = kernels::mul(e.mp.gain(), &residual);
-    let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
-    if !(finite(predicted.as_slice()) && finite(residual.as_slice())) {
+    // Finiteness of `x⁻` and `ν` in one test: `0 v` is ±0 for a finite `v` and NaN
+    // otherwise, so the sum is ±0 exactly when every entry is finite (vector arithmetic
+    // instead of a bit test per entry through the integer registers, ~40 instructions of
+    // this ~210-instruction step in callgrind).
+    let probe = predicted
+        .iter()
+        .chain(residual.iter())
+        .fold(0.0, |acc, v| acc + 0.0 * v);
+    if probe != 0.0 {
         return None;
     }
     // `x⁻ + K ν` element by element (the sum the full step's vector addition makes),
@@ -266,16 +273,16 @@ fn reused_step<const N: usize, const M: usize, Me: MeasurementModel<N, M>>(
     // reads it back with wider loads than its element stores, which stalls on store
     // forwarding (docs/STATUS.md, session 5) and was 40 % of this loop's time.
     let mut posterior = Vector::<N>::zeros();
-    let mut ok = true;
+    let mut probe = 0.0;
     for ((o, p), (a, b)) in x_out
         .iter_mut()
         .zip(posterior.iter_mut())
         .zip(predicted.iter().zip(correction.iter()))
     {
         let v = a + b;
-        ok &= v.is_finite();
+        probe += 0.0 * v;
         *o = v;
         *p = v;
     }
-    ok.then(|| (posterior, e.mp.nis(&residual)))
+    (probe == 0.0).then(|| (posterior, e.mp.nis(&residual)))
 }

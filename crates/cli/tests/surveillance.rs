@@ -2,12 +2,64 @@
 //! the trackers beat "no tracks" by a wide margin without many false tracks.
 
 // Test helpers may unwrap: a failure is a test failure.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use std::process::Command;
 
-/// Keys of the three tracker configurations in `summary.json`.
-const CONFIGS: [&str; 4] = ["gnn_kf", "gnn_imm", "jpda_kf", "jpda_imm"];
+/// Keys of the tracker configurations in `summary.json` (`default` first).
+const CONFIGS: [&str; 5] = ["default", "gnn_kf", "gnn_imm", "jpda_kf", "jpda_imm"];
+
+/// Runs `argus run surveillance` with `args` in a temporary directory and returns the
+/// output directory's `summary.json`, parsed, with the directory (kept alive).
+fn campaign(args: &[&str]) -> (serde_json::Value, tempfile::TempDir) {
+    let dir = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_argus"))
+        .args(["run", "surveillance", "--out", "res"])
+        .args(args)
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    let json = std::fs::read_to_string(dir.path().join("res").join("summary.json")).unwrap();
+    (serde_json::from_str(&json).unwrap(), dir)
+}
+
+/// The summary row `key`'s value.
+fn ours(v: &serde_json::Value, key: &str) -> f64 {
+    v["results"][key]["ours"]
+        .as_f64()
+        .unwrap_or_else(|| panic!("row {key} missing in {v}"))
+}
+
+#[test]
+fn default_configuration_keeps_clutter_tracks_below_one_per_scan() {
+    // Issue 18's goal for the default configuration: ≤ 1 confirmed false track per scan at
+    // the scenario's default clutter density (500 plots per scan over the 200 km disc).
+    // False tracks are born of clutter and do not depend on the traffic, so 20 aircraft
+    // over 100 s (2 runs, seed 5) carry the full density's false tracks: the M-of-N
+    // IMM configurations keep 12.7–13.0 per scan here (measured), the default 0.0. The
+    // bound is the goal's (a requirement, not a derived value); its second goal, ≤ 5
+    // breaks per run at the full default, is not reached (11.05, docs/surveillance.md)
+    // and is not checked.
+    let (v, _dir) = campaign(&[
+        "--runs",
+        "2",
+        "--seed",
+        "5",
+        "--set",
+        "targets=20",
+        "--set",
+        "duration=100",
+    ]);
+    let rate = ours(&v, "default_false_track_rate");
+    assert!(rate <= 1.0, "default: false-track rate {rate} per scan");
+    let false_after = ours(&v, "default_false");
+    assert!(
+        false_after <= 1.0,
+        "default: {false_after} false tracks per scan"
+    );
+}
 
 #[test]
 fn reduced_campaign_beats_no_tracks_with_few_false_tracks() {

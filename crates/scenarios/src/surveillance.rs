@@ -7,11 +7,15 @@
 //! the covered disc. Every plot (target or clutter) is converted to Cartesian with the
 //! unbiased conversion and its covariance ([`argus_sensors::convert_polar`],
 //! [`ConversionMethod::Unbiased`], evaluated at the plot) and fed to
-//! [`argus_tracker::Tracker`].
+//! [`argus_tracker::Tracker`]; the aircraft IMM takes the polar plots as measured.
 //!
-//! Four tracker configurations run on the same plots of every run: GNN with a Kalman
-//! filter per track (`gnn_kf`), GNN with a two-mode CV IMM per track (`gnn_imm`), JPDA
-//! with a Kalman filter (`jpda_kf`) and JPDA with the IMM (IMM-JPDA, `jpda_imm`).
+//! Five tracker configurations run on the same plots of every run: the recommended
+//! `default` (JPDA with the aircraft IMM per track, updated with the polar plots
+//! themselves, confirmation and deletion by the track score with the clutter density,
+//! deletion after 4 misses; docs/surveillance.md says why), then GNN with a Kalman filter
+//! per track (`gnn_kf`), GNN with a two-mode CV IMM per track (`gnn_imm`), JPDA with a
+//! Kalman filter (`jpda_kf`) and JPDA with the IMM (IMM-JPDA, `jpda_imm`), all four with
+//! M-of-N confirmation on the converted plots.
 //!
 //! At each scan the confirmed tracks' positions are scored against the truth with
 //! OSPA and GOSPA (α = 2, cut-off `cutoff`, order `order`; GOSPA split into
@@ -63,7 +67,7 @@ impl Scenario for Surveillance {
     }
 
     fn description(&self) -> &'static str {
-        "issue 9: 200 aircraft, 200 km radar, 5 s scans, P_D 0.9, clutter; GNN/JPDA, KF/IMM trackers; OSPA, GOSPA, track statistics"
+        "issues 9, 18: 200 aircraft, 200 km radar, 5 s scans, P_D 0.9, clutter; the default tracker and GNN/JPDA × KF/IMM; OSPA, GOSPA, track statistics"
     }
 
     fn default_runs(&self) -> u64 {
@@ -161,6 +165,55 @@ impl Scenario for Surveillance {
                 1e-3,
                 0.999,
                 "IMM probability of staying in a mode per scan",
+            ),
+            ParamSpec::new(
+                "ac_cv_sigma_low",
+                0.3,
+                1e-3,
+                100.0,
+                "default: aircraft IMM's quiet CV mode σ_a (m/s²)",
+            ),
+            ParamSpec::new(
+                "ac_cv_sigma_high",
+                8.0,
+                1e-3,
+                100.0,
+                "default: aircraft IMM's manoeuvre CV mode σ_a (m/s²)",
+            ),
+            ParamSpec::new(
+                "ac_ct_sigma_omega_deg",
+                0.5,
+                1e-6,
+                10.0,
+                "default: aircraft IMM's turn-rate random walk σ_ω (deg/s²)",
+            ),
+            ParamSpec::new(
+                "default_max_misses",
+                4.0,
+                1.0,
+                100.0,
+                "default: a confirmed track is deleted after this many misses in a row",
+            ),
+            ParamSpec::new(
+                "false_confirm",
+                1e-4,
+                1e-12,
+                0.4,
+                "default: track score's probability of confirming a false track",
+            ),
+            ParamSpec::new(
+                "delete_drop",
+                9.0,
+                0.1,
+                100.0,
+                "default: a confirmed track is deleted this far below its peak score",
+            ),
+            ParamSpec::new(
+                "new_target_density",
+                1e-11,
+                1e-20,
+                1e-3,
+                "default: track score's new targets per m² per scan",
             ),
             ParamSpec::new(
                 "jpda_max_events",

@@ -173,23 +173,96 @@ pub fn convert_polar(
                 covariance: Matrix::<2, 2>::new(r11, r12, r12, r22),
             }
         }
-        ConversionMethod::Unbiased => {
-            let a = 1.0 / lam_sq - 2.0;
-            let b = 0.5 * (r2 + sr2);
-            // cos 2θ and sin 2θ from the double-angle identities (no second sine and cosine).
-            let (c2t, s2t) = ((c - n) * (c + n), 2.0 * n * c);
-            let r11 = a * r2 * c * c + b * (1.0 + lam2 * c2t);
-            let r22 = a * r2 * n * n + b * (1.0 - lam2 * c2t);
-            let r12 = a * r2 * c * n + b * lam2 * s2t;
-            ConvertedMeasurement {
-                position: Vector::<2>::new(r * c / lam, r * n / lam),
-                covariance: Matrix::<2, 2>::new(r11, r12, r12, r22),
-            }
-        }
+        ConversionMethod::Unbiased => UnbiasedPolarConversion::from_checked(sr, st).formula(r, t),
     };
     check_finite_vector(&out.position, "converted position")?;
     check_finite_matrix(&out.covariance, "converted covariance")?;
     Ok(out)
+}
+
+/// The unbiased conversion of [`convert_polar`] ([`ConversionMethod::Unbiased`], Mo et al.
+/// 1998; BLK 2001 §10.4.3) for a radar of constant `(σr, σθ)`: the constants that depend on
+/// the noise alone (`σr²`, `λ = e^{−σθ²/2}`, `λ⁻² − 2`, `λ' = e^{−2σθ²}`) are formed once, so a
+/// plot costs one sine and cosine and no exponential. The arithmetic is `convert_polar`'s
+/// own (that function's unbiased branch is this type's formula), so the results are the same
+/// to the bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnbiasedPolarConversion {
+    /// `σr²`.
+    sr2: f64,
+    /// `λ = e^{−σθ²/2}`.
+    lam: f64,
+    /// `λ⁻² − 2`.
+    a: f64,
+    /// `λ' = e^{−2σθ²} = λ⁴`.
+    lam2: f64,
+}
+
+impl UnbiasedPolarConversion {
+    /// The conversion for noise standard deviations `σr` (m) and `σθ` (rad).
+    ///
+    /// # Errors
+    /// [`SensorError::NonFinite`] or [`SensorError::Negative`] for a bad σ, as
+    /// [`convert_polar`].
+    pub fn new(sigma_range: f64, sigma_azimuth: f64) -> Result<Self, SensorError> {
+        let sr = non_negative(sigma_range, "range sigma")?;
+        let st = non_negative(sigma_azimuth, "azimuth sigma")?;
+        Ok(Self::from_checked(sr, st))
+    }
+
+    /// The constants of checked σ, computed as [`convert_polar`] computes them.
+    #[inline(always)]
+    fn from_checked(sr: f64, st: f64) -> Self {
+        let s = st * st;
+        let lam = (-0.5 * s).exp();
+        // e^{−2σ²} = (e^{−σ²/2})⁴: one exponential, not two.
+        let lam_sq = lam * lam;
+        Self {
+            sr2: sr * sr,
+            lam,
+            a: 1.0 / lam_sq - 2.0,
+            lam2: lam_sq * lam_sq,
+        }
+    }
+
+    /// Converts the plot `(range, azimuth)`: the same values as [`convert_polar`] with this
+    /// conversion's σ and [`ConversionMethod::Unbiased`].
+    ///
+    /// # Errors
+    /// As [`convert_polar`]: [`SensorError::NotPositive`] unless `range > 0`,
+    /// [`SensorError::NonFinite`] for a non-finite azimuth, [`SensorError::Math`] for a
+    /// non-finite result.
+    #[inline]
+    pub fn convert(
+        &self,
+        range: f64,
+        azimuth: f64,
+    ) -> Result<ConvertedMeasurement<2>, SensorError> {
+        let r = positive(range, "range")?;
+        let t = finite(azimuth, "azimuth")?;
+        let out = self.formula(r, t);
+        check_finite_vector(&out.position, "converted position")?;
+        check_finite_matrix(&out.covariance, "converted covariance")?;
+        Ok(out)
+    }
+
+    /// `p = λ⁻¹ r (c, n)` and `R` of [`convert_polar`]'s unbiased branch, for checked inputs.
+    #[inline(always)]
+    fn formula(&self, r: f64, t: f64) -> ConvertedMeasurement<2> {
+        let (n, c) = t.sin_cos();
+        let r2 = r * r;
+        let (a, lam, lam2) = (self.a, self.lam, self.lam2);
+        let b = 0.5 * (r2 + self.sr2);
+        // cos 2θ and sin 2θ from the double-angle identities (no second sine and cosine).
+        let (c2t, s2t) = ((c - n) * (c + n), 2.0 * n * c);
+        let r11 = a * r2 * c * c + b * (1.0 + lam2 * c2t);
+        let r22 = a * r2 * n * n + b * (1.0 - lam2 * c2t);
+        let r12 = a * r2 * c * n + b * lam2 * s2t;
+        ConvertedMeasurement {
+            position: Vector::<2>::new(r * c / lam, r * n / lam),
+            covariance: Matrix::<2, 2>::new(r11, r12, r12, r22),
+        }
+    }
 }
 
 /// Expectations of the trigonometric functions of a true angle `φ = φ_m − w`,
@@ -326,6 +399,25 @@ mod tests {
 
     proptest::proptest! {
         #[test]
+        fn precomputed_unbiased_conversion_equals_convert_polar_to_the_bit(
+            r in 1.0f64..2e5,
+            t in -7.0f64..7.0,
+            sr in 0.0f64..200.0,
+            st in 0.0f64..0.3,
+        ) {
+            // The same arithmetic by construction (convert_polar's unbiased branch is the
+            // type's formula): equal bits, not a tolerance.
+            let a = convert_polar(r, t, sr, st, ConversionMethod::Unbiased).unwrap();
+            let b = UnbiasedPolarConversion::new(sr, st).unwrap().convert(r, t).unwrap();
+            for (x, y) in a.position.iter().zip(b.position.iter()) {
+                proptest::prop_assert_eq!(x.to_bits(), y.to_bits());
+            }
+            for (x, y) in a.covariance.iter().zip(b.covariance.iter()) {
+                proptest::prop_assert_eq!(x.to_bits(), y.to_bits());
+            }
+        }
+
+        #[test]
         fn unbiased_polar_equals_its_closed_form(
             r in 100.0f64..2e5,
             t in -3.2f64..3.2,
@@ -412,5 +504,32 @@ mod tests {
         ));
         assert!(convert_spherical(1.0, 0.0, 0.0, [1.0, 0.1, -0.1], m).is_err());
         assert!(convert_spherical(1.0, 0.0, f64::INFINITY, [1.0, 0.1, 0.1], m).is_err());
+    }
+
+    #[test]
+    fn precomputed_unbiased_conversion_reports_the_same_errors() {
+        assert!(matches!(
+            UnbiasedPolarConversion::new(-1.0, 0.01),
+            Err(SensorError::Negative { .. })
+        ));
+        assert!(matches!(
+            UnbiasedPolarConversion::new(10.0, f64::NAN),
+            Err(SensorError::NonFinite { .. })
+        ));
+        let conv = UnbiasedPolarConversion::new(10.0, 0.01).unwrap();
+        for (r, t) in [
+            (0.0, 0.1),
+            (-5.0, 0.1),
+            (f64::NAN, 0.1),
+            (1e3, f64::INFINITY),
+        ] {
+            // By text: an error carrying a NaN value is not `==` to itself.
+            assert_eq!(
+                conv.convert(r, t).unwrap_err().to_string(),
+                convert_polar(r, t, 10.0, 0.01, ConversionMethod::Unbiased)
+                    .unwrap_err()
+                    .to_string()
+            );
+        }
     }
 }

@@ -65,8 +65,8 @@ pub use bearing::Bearing2D;
 pub use bias::{PolarBias, bias_regressor, bias_sensitivity};
 pub use cartesian::CartesianPosition;
 pub use conversion::{
-    ConversionMethod, ConvertedMeasurement, convert_polar, convert_spherical, polar_jacobian,
-    spherical_jacobian,
+    ConversionMethod, ConvertedMeasurement, UnbiasedPolarConversion, convert_polar,
+    convert_spherical, polar_jacobian, spherical_jacobian,
 };
 pub use error::SensorError;
 pub use noise::{LinkBudget, RadarNoise, Sigmas, SnrNoise, db_to_linear, linear_to_db};
