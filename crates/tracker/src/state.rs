@@ -99,6 +99,14 @@ impl TrackState {
         }
     }
 
+    /// The two-mode CV IMM's mode-conditioned estimates and probabilities.
+    pub(crate) fn imm_estimate(&self) -> Option<&ImmEstimate<4, 2>> {
+        match self {
+            Self::Imm(imm) => Some(imm),
+            Self::Single | Self::Multi(_) | Self::Aircraft(_) => None,
+        }
+    }
+
     /// The multi-IMM's measurement-noise reference.
     pub(crate) fn noise_estimate(&self) -> Option<NoiseVariances> {
         match self {

@@ -1,7 +1,7 @@
 //! Tracks, their ids and statuses.
 
 use argus_core_math::Gaussian;
-use argus_imm::NoiseVariances;
+use argus_imm::{ImmEstimate, NoiseVariances};
 
 use crate::state::{ModeProbabilities, TrackState};
 
@@ -150,6 +150,17 @@ impl Track {
     #[must_use]
     pub fn mode_probabilities(&self) -> Option<ModeProbabilities> {
         self.state.mode_probabilities()
+    }
+
+    /// The two-mode CV IMM's state at [`Track::time`] ([`crate::EstimatorConfig::ImmCv2`]
+    /// only): the mode-conditioned estimates `x̂ⁱ, Pⁱ` and probabilities `μⁱ` (quiet,
+    /// manoeuvre) of which [`Track::estimate`] is the moment match — after a plot the
+    /// IMM's posterior (with JPDA: the per-mode PDA moments), after a miss its mode
+    /// predictions with `μ̄`. What an IMM smoother of the track's forward pass needs
+    /// (`argus track --smooth`); a borrow, nothing copied or allocated.
+    #[must_use]
+    pub fn imm_estimate(&self) -> Option<&ImmEstimate<4, 2>> {
+        self.state.imm_estimate()
     }
 
     /// The aircraft IMM's turn-rate estimate and its standard deviation (rad/s,

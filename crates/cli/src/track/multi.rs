@@ -294,8 +294,8 @@ pub(super) fn run(
     };
     let mut tracker = Tracker::new(c.clone())?;
     let mut columns = columns(c);
-    if recorded.is_some() {
-        columns.extend(Column::smoothed_tracker());
+    if let Some(rec) = &recorded {
+        columns.extend(rec.columns());
     }
     let mut out = TrackRows::with_reference(columns, files.reference);
     let mut file = AtomicFile::create(files.out)?;

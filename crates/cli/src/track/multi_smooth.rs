@@ -2,17 +2,44 @@
 //! table): every track that was confirmed at some scan is smoothed over its own life,
 //! from its rows.
 //!
+//! # KF and EKF (`kf-converted`, `ekf`)
 //! The tracker keeps per track only its filtered estimate `x̂ₖ, Pₖ` (no prediction, no
-//! transition). For its CV Kalman filter and EKF (`kf-converted`, `ekf`) that is enough
-//! and exact: the tracker predicts a track from its last posterior by the linear CV model
-//! `F(dt)`, `Q(dt)` of `sigma_a` (`Cv2D::discrete`), so the same prediction from the row
-//! before (over the two rows' time difference) is the tracker's own `x̂ₖ⁻, Pₖ⁻` to
-//! round-off, and `Cₖ = Pₖ₋₁ Fᵀ` ([`super::smooth`]). With JPDA the posterior is the PDA
-//! mixture's moment match; the RTS pass over those moments is exact with respect to the
-//! recorded forward pass (the usual smoother of a PDA filter's output), not the smoother
-//! of the mixture. The tracker's IMM and multi-IMM tracks expose only their combined
-//! estimate and mode probabilities, not the mode-conditioned estimates the IMM smoother
-//! needs: smoothing them is refused (a typed error naming `estimator.kind`).
+//! transition). That is enough and exact: the tracker predicts a track from its last
+//! posterior by the linear CV model `F(dt)`, `Q(dt)` of `sigma_a` (`Cv2D::discrete`), so
+//! the same prediction from the row before (over the two rows' time difference) is the
+//! tracker's own `x̂ₖ⁻, Pₖ⁻` to round-off, and `Cₖ = Pₖ₋₁ Fᵀ` ([`super::smooth`]).
+//!
+//! # The two-mode IMM (`imm`, [`EstimatorConfig::ImmCv2`])
+//! Each row keeps the track's IMM state ([`Track::imm_estimate`]: the mode-conditioned
+//! estimates `x̂ⁱₖ, Pⁱₖ` and probabilities `μⁱₖ`, after the plot or, after a miss, the
+//! mode predictions with `μ̄`), and the track is smoothed by `argus_imm`'s fixed-interval
+//! IMM smoother ([`argus_imm::imm_smooth`], the single-target `imm`'s, through the same
+//! [`ImmRecorder`]). Its forward record — every mode's estimate predicted through every
+//! model with the cross covariance, `x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ, Cⁱʲₖ₊₁`, and `ln μ̄ⱼ = ln Σᵢ πᵢⱼ
+//! μⁱₖ` — is recomputed from the row before's mode estimates over the two rows' time
+//! difference, with an IMM built from the same `sigma_a_low`, `sigma_a_high`, `p_stay`
+//! by the same constructors as the tracker's (`Cv2D::discrete`, the Markov matrix
+//! `[[p, 1 − p], [1 − p, p]]`). In which sense it is exact:
+//! - with GNN it is the IMM's own forward pass: the tracker's mixing and mode predictions
+//!   are linear maps of the same recorded posterior, so the record is the one
+//!   `argus_imm::ImmTrack::step` would have kept over the same plots (tested against it
+//!   to 1e-9, `tests/smooth_imm_tracks.rs`); a miss is recorded as the IMM's prediction,
+//!   which it is;
+//! - with JPDA (IMM-JPDA) each mode's posterior is the PDA mixture's moment match; the
+//!   smoother runs over those recorded moments (exact with respect to the recorded
+//!   forward pass, the usual smoother of a PDA filter's output), not the smoother of the
+//!   mixture — as for the KF with JPDA.
+//!
+//! Rows of one time (scans of two sensors at one instant) are one step whose estimate is
+//! the last row's, as for the single-target IMM ([`super::smooth`]). The smoothed mode
+//! probabilities go to `mu_1s, mu_2s`.
+//!
+//! # Not smoothed
+//! The multi-IMM (`multi-imm`) and the aircraft IMM (`aircraft-imm`) are refused with a
+//! typed error naming `estimator.kind`: the multi-IMM keeps a noise-hypothesis mixture
+//! the IMM smoother does not model, and the aircraft IMM's modes have unequal state sizes
+//! (CV 4, CT 5 with the turn rate) while `argus_imm`'s smoother needs one state size for
+//! every mode.
 //!
 //! Which rows: a smoothed track's rows from its first (the tentative ones included) to
 //! its last before deletion; a track's `deleted` row and every row of a track never
@@ -22,16 +49,19 @@ use std::collections::BTreeMap;
 
 use argus_core_math::Gaussian;
 use argus_filters::Kf;
-use argus_imm::NoiseVariances;
+use argus_imm::{Imm, ImmEstimate, ImmSmoothed, MarkovMatrix, NoiseVariances};
 use argus_motion_models::Cv2D;
 use argus_tracker::{
     DeletionReason, EstimatorConfig, ModeProbabilities, SensorId, Track, TrackStatus, TrackerConfig,
 };
 
 use super::multi::{Files, reason_name, status_name};
-use super::rows::{Point, TrackRows};
-use super::smooth::{Smoothing, rts_rows};
+use super::rows::{Column, Point, TrackRows};
+use super::smooth::{self, Failure, ImmRecorder, Smoothing, rts_rows};
 use crate::error::CliError;
+
+/// The tracker's two-mode CV IMM.
+type Imm2 = Imm<Kf<Cv2D>, 4, 2>;
 
 /// One row as the tracker gave it.
 #[derive(Debug, Clone, Copy)]
@@ -45,36 +75,80 @@ struct Row {
     modes: Option<ModeProbabilities>,
     noise: Option<NoiseVariances>,
     score: f64,
+    /// The IMM state (IMM tracks only).
+    imm: Option<ImmEstimate<4, 2>>,
 }
 
-/// The rows of a run kept for smoothing, and the tracks' Kalman filter.
+/// The smoother of the tracks' estimator.
+#[derive(Debug)]
+enum Smoother {
+    /// RTS, with the tracks' CV Kalman filter.
+    Rts(Kf<Cv2D>),
+    /// The IMM smoother, with the tracks' IMM.
+    Imm(Imm2),
+}
+
+/// One track's smoothed rows: the combined estimate, and the IMM's mode probabilities.
+type SmoothedRow = (Gaussian<4>, Option<[f64; 2]>);
+
+/// The rows of a run kept for smoothing, and the tracks' filter.
 #[derive(Debug)]
 pub(super) struct Recorded {
     rows: Vec<Row>,
-    filter: Kf<Cv2D>,
+    smoother: Smoother,
+}
+
+/// The tracker's IMM, built as `argus_tracker` builds it.
+fn tracker_imm(sigma_a_low: f64, sigma_a_high: f64, p_stay: f64) -> Result<Imm2, CliError> {
+    let markov = MarkovMatrix::new([[p_stay, 1.0 - p_stay], [1.0 - p_stay, p_stay]])?;
+    let filters = [
+        Kf::new(Cv2D::discrete(sigma_a_low)?),
+        Kf::new(Cv2D::discrete(sigma_a_high)?),
+    ];
+    Ok(Imm::new(filters, markov)?)
 }
 
 impl Recorded {
     /// An empty record for the tracker configured by `c`.
     ///
     /// # Errors
-    /// [`CliError::Input`] at `estimator.kind` for the IMM and multi-IMM (module docs);
-    /// [`CliError::Motion`] for a bad `sigma_a` (already refused by the configuration).
+    /// [`CliError::Input`] at `estimator.kind` for the multi-IMM and the aircraft IMM
+    /// (module docs); [`CliError::Motion`] / [`CliError::Imm`] for a bad `sigma_a` or
+    /// `p_stay` (already refused by the configuration).
     pub(super) fn new(files: &Files<'_>, c: &TrackerConfig) -> Result<Self, CliError> {
-        match c.estimator {
-            EstimatorConfig::Kf | EstimatorConfig::Ekf => Ok(Self {
-                rows: Vec::new(),
-                filter: Kf::new(Cv2D::discrete(c.sigma_a)?),
-            }),
-            _ => Err(CliError::input(
-                files.config,
-                None,
-                Some("estimator.kind"),
-                "--smooth / --smooth-lag with [tracker]: the tracker's IMM and multi-IMM tracks \
-                 keep only their combined estimate, not the per-mode estimates the IMM smoother \
-                 needs; the tracker's kinds that smooth are kf-converted and ekf",
-            )),
-        }
+        let smoother = match c.estimator {
+            EstimatorConfig::Kf | EstimatorConfig::Ekf => {
+                Smoother::Rts(Kf::new(Cv2D::discrete(c.sigma_a)?))
+            }
+            EstimatorConfig::ImmCv2 {
+                sigma_a_low,
+                sigma_a_high,
+                p_stay,
+            } => Smoother::Imm(tracker_imm(sigma_a_low, sigma_a_high, p_stay)?),
+            _ => {
+                return Err(CliError::input(
+                    files.config,
+                    None,
+                    Some("estimator.kind"),
+                    "--smooth / --smooth-lag with [tracker]: the multi-IMM's noise \
+                     hypotheses and the aircraft IMM's modes of unequal state sizes have no \
+                     smoother; the tracker's kinds that smooth are kf-converted, ekf and imm",
+                ));
+            }
+        };
+        Ok(Self {
+            rows: Vec::new(),
+            smoother,
+        })
+    }
+
+    /// The smoothed columns: `xs, vxs, ys, vys, sigma_xs, sigma_ys`, and `mu_1s, mu_2s`
+    /// for the IMM.
+    pub(super) fn columns(&self) -> Vec<Column> {
+        Column::smoothed_tracker(match self.smoother {
+            Smoother::Rts(_) => 0,
+            Smoother::Imm(_) => 2,
+        })
     }
 
     /// Keeps the row of `track` from the scan of `sensor`.
@@ -89,6 +163,7 @@ impl Recorded {
             modes: track.mode_probabilities(),
             noise: track.noise_estimate(),
             score: track.score(),
+            imm: track.imm_estimate().copied(),
         });
     }
 
@@ -108,7 +183,7 @@ impl Recorded {
         for (i, r) in rows.iter().enumerate() {
             by_track.entry(r.track).or_default().push(i);
         }
-        let mut smoothed: Vec<Option<Gaussian<4>>> = vec![None; rows.len()];
+        let mut smoothed: Vec<Option<SmoothedRow>> = vec![None; rows.len()];
         let mut count = 0;
         for (id, idx) in by_track {
             if !idx
@@ -121,11 +196,18 @@ impl Recorded {
                 .into_iter()
                 .filter(|&i| rows[i].status != TrackStatus::Deleted)
                 .collect();
-            let seq: Vec<(f64, Gaussian<4>)> = live
-                .iter()
-                .map(|&i| (rows[i].time, rows[i].estimate))
-                .collect();
-            let s = rts_rows(&self.filter, &seq, how).map_err(|f| f.into_cli(id))?;
+            let s = match &self.smoother {
+                Smoother::Rts(kf) => {
+                    let seq: Vec<(f64, Gaussian<4>)> = live
+                        .iter()
+                        .map(|&i| (rows[i].time, rows[i].estimate))
+                        .collect();
+                    rts_rows(kf, &seq, how)
+                        .map(|s| s.into_iter().map(|g| (g, None)).collect::<Vec<_>>())
+                }
+                Smoother::Imm(imm) => imm_rows(imm, &rows, &live, how),
+            }
+            .map_err(|f| f.into_cli(id))?;
             for (&i, g) in live.iter().zip(s) {
                 smoothed[i] = Some(g);
             }
@@ -138,9 +220,44 @@ impl Recorded {
                 .modes(r.modes.as_ref().map(|m| m.as_slice()))
                 .noise(r.noise)
                 .score(r.score)
-                .smoothed(s.as_ref());
+                .smoothed(s.as_ref().map(|s| &s.0))
+                .smoothed_modes(s.as_ref().and_then(|s| s.1.as_ref()).map(|m| m.as_slice()));
             out.push(&p);
         }
         Ok(count)
     }
+}
+
+/// The IMM smoothing of one track's rows `live` (indices into `rows`, in time order):
+/// one smoothed row per row (rows of one time share their step's).
+///
+/// # Errors
+/// [`Failure`] at the step whose row has no IMM state, whose time goes backwards, or
+/// whose prediction or backward step fails.
+fn imm_rows(
+    imm: &Imm2,
+    rows: &[Row],
+    live: &[usize],
+    how: Smoothing,
+) -> Result<Vec<SmoothedRow>, Failure> {
+    let mut rec = ImmRecorder::new(*imm.markov());
+    let times: Vec<f64> = live.iter().map(|&i| rows[i].time).collect();
+    let row_step = smooth::steps(&times).row_step;
+    for (k, &i) in live.iter().enumerate() {
+        let r = &rows[i];
+        let est = r.imm.ok_or_else(|| {
+            Failure::new(row_step[k], r.time, "the row has no IMM state".to_owned())
+        })?;
+        rec.record(imm, r.time, est)?;
+    }
+    let s: Vec<ImmSmoothed<4, 2>> = rec.smooth(imm, how)?;
+    row_step
+        .iter()
+        .zip(&times)
+        .map(|(&k, &t)| {
+            s.get(k)
+                .map(|s| (s.combined, Some(s.mode_probabilities)))
+                .ok_or_else(|| Failure::new(k, t, "no smoothed step".to_owned()))
+        })
+        .collect()
 }

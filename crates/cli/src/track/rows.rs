@@ -100,13 +100,15 @@ impl Column {
         c
     }
 
-    /// The tracker's smoothed columns: `xs, vxs, ys, vys, sigma_xs, sigma_ys`.
-    pub(super) fn smoothed_tracker() -> Vec<Self> {
+    /// The tracker's smoothed columns: `xs, vxs, ys, vys, sigma_xs, sigma_ys`, then
+    /// `modes` smoothed mode probabilities (`mu_1s, …`; the IMM's).
+    pub(super) fn smoothed_tracker(modes: usize) -> Vec<Self> {
         let mut c: Vec<Self> = (0..4).map(Self::Smoothed).collect();
         c.extend([
             Self::SmoothedPositionSigma(0),
             Self::SmoothedPositionSigma(1),
         ]);
+        c.extend((0..modes).map(Self::SmoothedMode));
         c
     }
 
@@ -396,7 +398,7 @@ mod tests {
             "t,track,x,vx,y,vy,var_x,var_vx,var_y,var_vy,mu_1,mu_2,xs,vxs,ys,vys,var_xs,var_vxs,var_ys,var_vys,mu_1s,mu_2s\n"
         );
         let mut c = Column::tracker(0, false, false);
-        c.extend(Column::smoothed_tracker());
+        c.extend(Column::smoothed_tracker(0));
         c.extend([Column::Lat, Column::Lon]);
         assert_eq!(
             names(c),
@@ -434,7 +436,7 @@ mod tests {
         )
         .unwrap();
         let mut c = Column::tracker(0, false, false);
-        c.extend(Column::smoothed_tracker());
+        c.extend(Column::smoothed_tracker(0));
         let mut s = TrackRows::new(c);
         s.push(&Point::new(1.0, &g).smoothed(Some(&h)));
         s.push(&Point::new(2.0, &g).smoothed::<4>(None));

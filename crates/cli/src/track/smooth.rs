@@ -62,6 +62,15 @@ pub(super) struct Failure {
 }
 
 impl Failure {
+    /// A failure at step `step` (time `time`).
+    pub(super) fn new(step: usize, time: f64, message: String) -> Self {
+        Self {
+            step,
+            time,
+            message,
+        }
+    }
+
     /// The command's error for track `track`.
     pub(super) fn into_cli(self, track: u64) -> CliError {
         CliError::Smooth {

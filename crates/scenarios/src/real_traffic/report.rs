@@ -197,7 +197,7 @@ pub(super) fn reduce(s: &Setup, sums: &RealSums) -> Result<Report, ScenarioError
             "-",
             "diagnostic",
         );
-        // Issue 19: the same tracks RTS-smoothed (Kalman-filter trackers only).
+        // Issue 19: the same tracks smoothed (KF and two-mode IMM trackers; not the aircraft IMM).
         if let (Some(sm), Some(f)) = (opt(8), opt(3)) {
             rows.push(
                 Row::new(
@@ -208,7 +208,12 @@ pub(super) fn reduce(s: &Setup, sums: &RealSums) -> Result<Report, ScenarioError
                 )
                 .paper_text("reported (issue 19)")
                 .note(format!(
-                    "each track RTS-smoothed over its life (the tracker's CV KF): {sm:.1} m against {f:.1} m, same scorer"
+                    "each track smoothed over its life ({}): {sm:.1} m against {f:.1} m, same scorer",
+                    if key.ends_with("_imm") {
+                        "argus_imm's IMM smoother of the tracker's two-mode IMM"
+                    } else {
+                        "RTS of the tracker's CV KF"
+                    }
                 )),
             );
         }

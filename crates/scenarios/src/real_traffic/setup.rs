@@ -1,6 +1,7 @@
 //! `real-traffic`'s parameters, shared setup and one run: plots, tracking, scoring.
 
 use argus_geo::Geodetic;
+use argus_imm::ImmEstimate;
 use argus_score::{ScoreConfig, Scorer, TrackHistory, TrackRow, TruthPath, TruthSample};
 use argus_sim::{ChaCha8Rng, Rotation, run_rng};
 use argus_tracker::{
@@ -10,7 +11,9 @@ use argus_tracker::{
 use serde::{Deserialize, Serialize};
 
 use super::radar::{self, Radar};
-use super::smooth::{SmoothedTruth, nees_against, smoothed_track, smoothed_truth};
+use super::smooth::{
+    SmoothedTruth, nees_against, smoothed_imm_track, smoothed_track, smoothed_truth, tracker_imm,
+};
 use super::truth::{self, Path};
 use crate::error::{ParamProblem, ScenarioError};
 use crate::params::Params;
@@ -75,8 +78,8 @@ pub(crate) struct ConfigScore {
     pub(crate) gospa_false_mean: f64,
     pub(crate) confirmed_tracks: usize,
     pub(crate) aircraft_hours: f64,
-    /// The position RMSE of the same tracks RTS-smoothed over their lives (`None` for the
-    /// IMM trackers, whose tracks cannot be smoothed: `super::smooth`).
+    /// The position RMSE of the same tracks smoothed over their lives (RTS for the KF, the
+    /// IMM smoother for the two-mode IMM; `None` for the aircraft IMM: `super::smooth`).
     #[serde(default)]
     pub(crate) smoothed_position_rmse: Option<f64>,
     /// `Σ NEES` of the confirmed rows' `[x, vx, y, vy]` against the smoothed truth, and
@@ -219,16 +222,19 @@ impl Setup {
         let mut configs = Vec::with_capacity(self.trackers.len());
         let mut map_tracks = Vec::new();
         for (k, named) in self.trackers.iter().enumerate() {
-            let (histories, estimates): (
-                Vec<TrackHistory>,
-                Vec<Vec<argus_core_math::Gaussian<4>>>,
-            ) = track_with_estimates(
+            let records = track_with_estimates(
                 &named.config,
                 &plots,
                 self.radar.period * named.config.sector_fraction,
-            )?
-            .into_iter()
-            .unzip();
+            )?;
+            let mut histories = Vec::with_capacity(records.len());
+            let mut estimates = Vec::with_capacity(records.len());
+            let mut imm_states = Vec::with_capacity(records.len());
+            for r in records {
+                histories.push(r.history);
+                estimates.push(r.estimates);
+                imm_states.push(r.imm);
+            }
             if let Ok(path) = std::env::var("ARGUS_DEBUG_TRACKS") {
                 let mut t = String::from("t,track,status,x,vx,y,vy\n");
                 for h in &histories {
@@ -272,6 +278,22 @@ impl Setup {
                         .iter()
                         .zip(&estimates)
                         .map(|(h, e)| smoothed_track(&kf, h, e))
+                        .collect::<Result<Vec<_>, _>>()?;
+                    self.scorer
+                        .score(&smoothed, &self.truth)?
+                        .summary
+                        .position_rmse
+                }
+                EstimatorConfig::ImmCv2 {
+                    sigma_a_low,
+                    sigma_a_high,
+                    p_stay,
+                } => {
+                    let imm = tracker_imm(sigma_a_low, sigma_a_high, p_stay)?;
+                    let smoothed = histories
+                        .iter()
+                        .zip(&imm_states)
+                        .map(|(h, e)| smoothed_imm_track(&imm, h, e))
                         .collect::<Result<Vec<_>, _>>()?;
                     self.scorer
                         .score(&smoothed, &self.truth)?
@@ -433,13 +455,25 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
 /// Runs `config` over `plots` (fed a `chunk` of seconds at a time, as a stream) and
 /// returns every track's rows: its state each time it was updated or missed, with each
 /// row's estimate (mean and covariance) for smoothing and the NEES.
+/// A row's combined estimate and, for the two-mode IMM, the track's IMM state.
+type RowEstimate = (argus_core_math::Gaussian<4>, Option<ImmEstimate<4, 2>>);
+
+/// One track's rows as the tracker gave them: its history, its combined estimate per row
+/// and, for the two-mode IMM ([`EstimatorConfig::ImmCv2`]), its mode-conditioned state
+/// per row ([`argus_tracker::Track::imm_estimate`]; `None` for the other estimators).
+pub(crate) struct TrackRecord {
+    pub(crate) history: TrackHistory,
+    pub(crate) estimates: Vec<argus_core_math::Gaussian<4>>,
+    pub(crate) imm: Vec<Option<ImmEstimate<4, 2>>>,
+}
+
 pub(crate) fn track_with_estimates(
     config: &TrackerConfig,
     plots: &[Plot],
     chunk: f64,
-) -> Result<Vec<(TrackHistory, Vec<argus_core_math::Gaussian<4>>)>, ScenarioError> {
+) -> Result<Vec<TrackRecord>, ScenarioError> {
     let mut tracker = Tracker::new(config.clone())?;
-    let mut rows: std::collections::BTreeMap<u64, Vec<(TrackRow, argus_core_math::Gaussian<4>)>> =
+    let mut rows: std::collections::BTreeMap<u64, Vec<(TrackRow, RowEstimate)>> =
         std::collections::BTreeMap::new();
     let mut record = |tracker: &mut Tracker| {
         for tr in tracker.tracks().iter().chain(tracker.deleted()) {
@@ -460,7 +494,7 @@ pub(crate) fn track_with_estimates(
                     y: x[2],
                     vy: x[3],
                 },
-                *tr.estimate(),
+                (*tr.estimate(), tr.imm_estimate().copied()),
             ));
         }
         tracker.take_deleted();
@@ -482,9 +516,14 @@ pub(crate) fn track_with_estimates(
     rows.into_iter()
         .filter(|(_, r)| !r.is_empty())
         .map(|(id, r)| {
-            let (rows, estimates): (Vec<TrackRow>, Vec<_>) = r.into_iter().unzip();
+            let (rows, estimates): (Vec<TrackRow>, Vec<RowEstimate>) = r.into_iter().unzip();
+            let (estimates, imm) = estimates.into_iter().unzip();
             let h = TrackHistory::new(id.to_string(), rows).map_err(ScenarioError::from)?;
-            Ok((h, estimates))
+            Ok(TrackRecord {
+                history: h,
+                estimates,
+                imm,
+            })
         })
         .collect()
 }

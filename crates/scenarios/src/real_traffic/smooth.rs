@@ -7,9 +7,18 @@
 //! last posterior by `Cv2D::discrete(sigma_a)`, so the same prediction from the row before
 //! is the tracker's own to round-off, and the RTS pass over the rows is the fixed-interval
 //! smoother of the recorded forward pass (with JPDA: of the PDA posteriors' moments), as
-//! `argus track --smooth` does. The tracker's IMM tracks keep only their combined estimate,
-//! not the mode-conditioned estimates the IMM smoother needs: they are not smoothed (their
-//! rows are `None`).
+//! `argus track --smooth` does. The two-mode IMM tracks (`gnn_imm`, `jpda_imm`) are
+//! smoothed by `argus_imm`'s IMM smoother over their recorded mode-conditioned states
+//! ([`argus_tracker::Track::imm_estimate`] per row): the forward record (every mode's
+//! estimate predicted through every model with its cross covariance, `ln μ̄`) is
+//! recomputed from the row before's mode estimates over the rows' time difference by an
+//! IMM built as the tracker builds its own, so with GNN it is the IMM's own forward pass
+//! and with JPDA the smoother of the recorded per-mode PDA moments — as `argus track
+//! --smooth` does (`crates/cli/src/track/multi_smooth.rs`). This holds because a track
+//! is recorded after every sector and a rotating radar updates it at most once per
+//! revolution (a sector is one revolution's eighth), so no forward step falls between two
+//! rows. The aircraft IMM (`*_aircraft`) is not smoothed: its modes have unequal state
+//! sizes (CV 4, CT 5), and the IMM smoother needs one (its rows are `None`).
 //!
 //! **Smoothed truth.** The ADS-B positions jitter (docs/real-traffic.md: a 1-s sample's
 //! distance from the midpoint of its neighbours has median 11.5 m, 90th percentile 52 m;
@@ -22,6 +31,7 @@
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Kf, RtsStep, SmoothingFilter, rts_smooth};
+use argus_imm::{Imm, ImmEstimate, ImmTrack, MarkovMatrix};
 use argus_motion_models::Cv2D;
 use argus_score::{TrackHistory, TrackRow, TruthPath};
 use argus_sensors::CartesianPosition;
@@ -157,6 +167,89 @@ pub(crate) fn smoothed_track(
         .zip(&step_of)
         .map(|(r, &k)| {
             let m = smoothed[k].mean();
+            TrackRow {
+                x: m[0],
+                vx: m[1],
+                y: m[2],
+                vy: m[3],
+                ..*r
+            }
+        })
+        .collect();
+    TrackHistory::new(history.name(), rows).map_err(ScenarioError::from)
+}
+
+/// The tracker's two-mode CV IMM.
+pub(crate) type Imm2 = Imm<Kf<Cv2D>, 4, 2>;
+
+/// The IMM of [`argus_tracker::EstimatorConfig::ImmCv2`], built by the same constructors
+/// as the tracker's (`Cv2D::discrete`, the Markov matrix `[[p, 1 − p], [1 − p, p]]`).
+///
+/// # Errors
+/// [`ScenarioError`] for a bad value (already refused by the tracker's configuration).
+pub(crate) fn tracker_imm(
+    sigma_a_low: f64,
+    sigma_a_high: f64,
+    p_stay: f64,
+) -> Result<Imm2, ScenarioError> {
+    let markov = MarkovMatrix::new([[p_stay, 1.0 - p_stay], [1.0 - p_stay, p_stay]])?;
+    let filters = [
+        Kf::new(Cv2D::discrete(sigma_a_low)?),
+        Kf::new(Cv2D::discrete(sigma_a_high)?),
+    ];
+    Ok(Imm::new(filters, markov)?)
+}
+
+/// A two-mode IMM track's rows smoothed by `argus_imm`'s IMM smoother over its recorded
+/// mode-conditioned states `states` (module docs): a history with the same rows and flags
+/// and the smoothed combined states. Rows at the time of the row before (a deleted
+/// track's last row) take that row's smoothed state, as in [`smoothed_track`].
+///
+/// # Errors
+/// [`ScenarioError::Degenerate`] naming the track if a row has no IMM state or a step
+/// fails.
+pub(crate) fn smoothed_imm_track(
+    imm: &Imm2,
+    history: &TrackHistory,
+    states: &[Option<ImmEstimate<4, 2>>],
+) -> Result<TrackHistory, ScenarioError> {
+    let fail = |e: &dyn std::fmt::Display| smoothing_error(&format!("track {}", history.name()), e);
+    let rows = history.rows();
+    if states.len() != rows.len() {
+        return Err(fail(&format!(
+            "{} rows against {} IMM states",
+            rows.len(),
+            states.len()
+        )));
+    }
+    let mut track: Option<ImmTrack<4, 2>> = None;
+    let mut step_of = Vec::with_capacity(rows.len());
+    for (k, (r, est)) in rows.iter().zip(states).enumerate() {
+        let est = est.ok_or_else(|| fail(&format!("row {k} has no IMM state")))?;
+        match &mut track {
+            None => {
+                let mut t = ImmTrack::new(*imm.markov(), r.t, est).map_err(|e| fail(&e))?;
+                t.reserve(rows.len());
+                track = Some(t);
+            }
+            Some(t) => {
+                let last = t.steps()[t.steps().len() - 1].time();
+                if r.t > last {
+                    t.push(imm, r.t, est).map_err(|e| fail(&e))?;
+                }
+            }
+        }
+        step_of.push(track.as_ref().map_or(0, |t| t.steps().len() - 1));
+    }
+    let Some(track) = track else {
+        return TrackHistory::new(history.name(), Vec::new()).map_err(ScenarioError::from);
+    };
+    let smoothed = track.smooth().map_err(|e| fail(&e))?;
+    let rows = rows
+        .iter()
+        .zip(&step_of)
+        .map(|(r, &k)| {
+            let m = smoothed[k].combined.mean();
             TrackRow {
                 x: m[0],
                 vx: m[1],
@@ -319,5 +412,84 @@ mod tests {
             s.iter().all(|p| p.at(115.0).is_none()),
             "the gap is not bridged"
         );
+    }
+    #[test]
+    fn an_imm_track_smooths_as_the_imm_smoother_of_its_forward_pass() {
+        // Rows of a two-mode IMM track (updates, one coasted row, a repeated last row)
+        // smoothed from the recorded mode states alone equal ImmTrack's smoother of the
+        // same forward pass (ImmTrack::step) to round-off (1e-9 relative).
+        let imm = tracker_imm(0.5, 10.0, 0.95).unwrap();
+        let meas = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 900.0).unwrap();
+        let g0 = Gaussian::new(
+            Vector::<4>::new(0.0, 100.0, 0.0, 0.0),
+            Matrix::<4, 4>::identity() * 1e4,
+        )
+        .unwrap();
+        let e0 = ImmEstimate::from_common(g0, [0.5, 0.5]).unwrap();
+        let mut it = ImmTrack::new(*imm.markov(), 0.0, e0).unwrap();
+        let row = |t: f64, g: &Gaussian<4>| TrackRow {
+            t,
+            confirmed: true,
+            x: g.mean()[0],
+            vx: g.mean()[1],
+            y: g.mean()[2],
+            vy: g.mean()[3],
+        };
+        let (mut rows, mut states) = (vec![row(0.0, &g0)], vec![Some(e0)]);
+        let mut t = 0.0;
+        for k in 1..30 {
+            let tn = 5.0 * k as f64 + jitter(k, 0.5);
+            if k == 12 {
+                let p = imm.predict(it.latest(), tn - t).unwrap();
+                it.push(&imm, tn, p.into_estimate()).unwrap();
+            } else {
+                // A turn from step 15 on.
+                let y = if k > 15 {
+                    30.0 * (k - 15).pow(2) as f64
+                } else {
+                    0.0
+                };
+                let z = Vector::<2>::new(100.0 * tn + jitter(k, 40.0), y + jitter(k + 99, 40.0));
+                it.step(&imm, tn, &meas, &z).unwrap();
+            }
+            t = tn;
+            rows.push(row(t, &it.latest().combined().unwrap()));
+            states.push(Some(*it.latest()));
+        }
+        let last = *rows.last().unwrap();
+        rows.push(TrackRow {
+            confirmed: false,
+            ..last
+        });
+        states.push(*states.last().unwrap());
+        let h = TrackHistory::new("1", rows).unwrap();
+        let s = smoothed_imm_track(&imm, &h, &states).unwrap();
+        let want = it.smooth().unwrap();
+        let mut moved = 0.0_f64;
+        for (k, (r, w)) in s
+            .rows()
+            .iter()
+            .zip(want.iter().chain([want.last().unwrap()]))
+            .enumerate()
+        {
+            let m = w.combined.mean();
+            let d = [r.x - m[0], r.vx - m[1], r.y - m[2], r.vy - m[3]];
+            assert!(
+                d.iter().all(|v| v.abs() < 1e-9 * m.amax()),
+                "row {k}: {d:?}"
+            );
+            moved = moved.max((r.y - h.rows()[k].y).abs());
+        }
+        // The smoother is not the filter (the test can fail).
+        assert!(moved > 1.0, "smoothing moved y by at most {moved} m");
+        // A row without an IMM state is a typed error, not a half-smoothed track.
+        let mut bad = states.clone();
+        bad[7] = None;
+        let e = smoothed_imm_track(&imm, &h, &bad).unwrap_err().to_string();
+        assert!(e.contains("row 7 has no IMM state"), "{e}");
+        let e = smoothed_imm_track(&imm, &h, &states[1..])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("rows against"), "{e}");
     }
 }
