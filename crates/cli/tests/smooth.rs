@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use argus_geo::{Geodetic, LocalFrame};
 
 mod common;
-use common::argus;
+use common::{argus, track};
 
 /// One CSV row, by column name.
 type Row = BTreeMap<String, String>;
@@ -56,32 +56,6 @@ fn simulate(dir: &Path, run: u32) -> PathBuf {
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     plots
-}
-
-/// Runs `argus track` with `config` (text) over `plots` and `extra` flags: exit code,
-/// stderr, the tracks CSV (empty when not written).
-fn track(dir: &Path, config: &str, plots: &Path, extra: &[&str]) -> (Option<i32>, String, String) {
-    let cfg = dir.join("c.toml");
-    std::fs::write(&cfg, config).unwrap();
-    let out = dir.join("t.csv");
-    let _ = std::fs::remove_file(&out);
-    let mut args = vec![
-        "track",
-        "--config",
-        cfg.to_str().unwrap(),
-        "--plots",
-        plots.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    let o = argus(&args, dir);
-    let csv = std::fs::read_to_string(&out).unwrap_or_default();
-    (
-        o.status.code(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-        csv,
-    )
 }
 
 /// The truth `(x, y)` by time.

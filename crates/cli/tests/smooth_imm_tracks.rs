@@ -15,7 +15,7 @@ use argus_motion_models::Cv2D;
 use argus_sensors::CartesianPosition;
 
 mod common;
-use common::argus;
+use common::track;
 
 type Row = BTreeMap<String, String>;
 
@@ -106,31 +106,6 @@ fn write_plots(path: &Path, miss_at: Option<usize>) -> Vec<(f64, Option<Vector<2
     }
     std::fs::write(path, text).unwrap();
     scans
-}
-
-/// Runs `argus track` with `config` over `plots` and `extra`: exit code, stderr, CSV.
-fn track(dir: &Path, config: &str, plots: &Path, extra: &[&str]) -> (Option<i32>, String, String) {
-    let cfg = dir.join("c.toml");
-    std::fs::write(&cfg, config).unwrap();
-    let out = dir.join("t.csv");
-    let _ = std::fs::remove_file(&out);
-    let mut args = vec![
-        "track",
-        "--config",
-        cfg.to_str().unwrap(),
-        "--plots",
-        plots.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    let o = argus(&args, dir);
-    let csv = std::fs::read_to_string(&out).unwrap_or_default();
-    (
-        o.status.code(),
-        String::from_utf8_lossy(&o.stderr).into_owned(),
-        csv,
-    )
 }
 
 /// The rows of the scene's one confirmed track (track 0), deleted row excluded.

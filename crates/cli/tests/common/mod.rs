@@ -15,3 +15,38 @@ pub(crate) fn argus(args: &[&str], cwd: &Path) -> Output {
         .output()
         .unwrap()
 }
+
+/// Runs `argus track` with `config` (text, written to `dir/c.toml`) over `plots` and
+/// `extra` flags: exit code, stderr, the tracks CSV (`dir/t.csv`; empty when not written).
+///
+/// # Panics
+/// When a file cannot be written or a path is not UTF-8 (a test failure).
+#[allow(clippy::unwrap_used, dead_code)]
+pub(crate) fn track(
+    dir: &Path,
+    config: &str,
+    plots: &Path,
+    extra: &[&str],
+) -> (Option<i32>, String, String) {
+    let cfg = dir.join("c.toml");
+    std::fs::write(&cfg, config).unwrap();
+    let out = dir.join("t.csv");
+    let _ = std::fs::remove_file(&out);
+    let mut args = vec![
+        "track",
+        "--config",
+        cfg.to_str().unwrap(),
+        "--plots",
+        plots.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    let o = argus(&args, dir);
+    let csv = std::fs::read_to_string(&out).unwrap_or_default();
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+        csv,
+    )
+}
