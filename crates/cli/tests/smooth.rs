@@ -11,28 +11,7 @@ use std::path::{Path, PathBuf};
 use argus_geo::{Geodetic, LocalFrame};
 
 mod common;
-use common::{argus, track};
-
-/// One CSV row, by column name.
-type Row = BTreeMap<String, String>;
-
-fn rows(text: &str) -> Vec<Row> {
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    lines
-        .map(|l| {
-            header
-                .iter()
-                .zip(l.split(','))
-                .map(|(h, v)| ((*h).to_owned(), v.to_owned()))
-                .collect()
-        })
-        .collect()
-}
-
-fn num(r: &Row, k: &str) -> f64 {
-    r[k].parse().expect(k)
-}
+use common::{argus, num, rows, track};
 
 /// A single-target configuration of one polar radar at the origin (cv-polar's σ: 50 m,
 /// 0.1°).

@@ -5,7 +5,6 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
 use argus_core_math::{Matrix, Vector};
@@ -15,28 +14,7 @@ use argus_motion_models::Cv2D;
 use argus_sensors::CartesianPosition;
 
 mod common;
-use common::track;
-
-type Row = BTreeMap<String, String>;
-
-fn rows(text: &str) -> Vec<Row> {
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    lines
-        .map(|l| {
-            header
-                .iter()
-                .zip(l.split(','))
-                .map(|(h, v)| ((*h).to_owned(), v.to_owned()))
-                .collect()
-        })
-        .collect()
-}
-
-fn num(r: &Row, k: &str) -> f64 {
-    r[k].parse()
-        .unwrap_or_else(|_| panic!("column {k}: {:?}", r.get(k)))
-}
+use common::{Row, num, rows, track};
 
 /// The IMM's parameters, the same in every configuration below.
 const SIGMA_LOW: f64 = 0.5;

@@ -4,7 +4,7 @@
 // Test helpers outside #[test] functions may unwrap: a failure is a test failure.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 use std::path::Path;
 
 use rand::{RngExt as _, SeedableRng};
@@ -12,7 +12,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal, Poisson};
 
 mod common;
-use common::argus;
+use common::{Row, argus, num, rows as parse_rows};
 
 /// What one `argus track` run gave.
 struct Run {
@@ -53,26 +53,6 @@ fn track(dir: &Path, config: &str, plots: &str) -> Run {
         csv,
         summary,
     }
-}
-
-/// One CSV row, by column name.
-type Row = BTreeMap<String, String>;
-
-fn parse_rows(csv: &str) -> Vec<Row> {
-    let mut lines = csv.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    lines
-        .map(|l| {
-            head.iter()
-                .zip(l.split(','))
-                .map(|(h, v)| ((*h).to_owned(), v.to_owned()))
-                .collect()
-        })
-        .collect()
-}
-
-fn num(r: &Row, c: &str) -> f64 {
-    r[c].parse().unwrap()
 }
 
 /// A polar radar at the origin, σr = 50 m, σθ = 0.06° (≈ 1 mrad), and the tables given.

@@ -15,7 +15,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
 mod common;
-use common::argus;
+use common::{Row, argus, num, rows as parse_rows};
 
 const P: f64 = 5.0;
 const REVOLUTIONS: u32 = 120;
@@ -166,25 +166,6 @@ fn track(dir: &Path, config: &str, plots: &str) -> Run {
         csv,
         summary,
     }
-}
-
-type Row = BTreeMap<String, String>;
-
-fn parse_rows(csv: &str) -> Vec<Row> {
-    let mut lines = csv.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    lines
-        .map(|l| {
-            head.iter()
-                .zip(l.split(','))
-                .map(|(h, v)| ((*h).to_owned(), v.to_owned()))
-                .collect()
-        })
-        .collect()
-}
-
-fn num(r: &Row, c: &str) -> f64 {
-    r[c].parse().unwrap()
 }
 
 fn example() -> String {

@@ -1,5 +1,6 @@
 //! What the binary-driving tests share.
 
+use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -49,4 +50,37 @@ pub(crate) fn track(
         String::from_utf8_lossy(&o.stderr).into_owned(),
         csv,
     )
+}
+
+/// One CSV row, by column name.
+pub(crate) type Row = BTreeMap<String, String>;
+
+/// The rows of a CSV text with a header line (no quoting: Argus's CSVs have none).
+///
+/// # Panics
+/// When the text is empty (a test failure).
+#[allow(clippy::unwrap_used, dead_code)]
+pub(crate) fn rows(text: &str) -> Vec<Row> {
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    lines
+        .map(|l| {
+            header
+                .iter()
+                .zip(l.split(','))
+                .map(|(h, v)| ((*h).to_owned(), v.to_owned()))
+                .collect()
+        })
+        .collect()
+}
+
+/// Column `k` of a row as a number.
+///
+/// # Panics
+/// When the column is missing or not a number (a test failure), naming it.
+#[allow(clippy::panic, dead_code)]
+pub(crate) fn num(r: &Row, k: &str) -> f64 {
+    r.get(k)
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("column {k}: {:?}", r.get(k)))
 }
