@@ -162,11 +162,25 @@ pub(crate) fn smoothed_track(
         step_of.push(steps.len() - 1);
     }
     let smoothed = rts_smooth(&steps).map_err(|e| fail(&e))?;
-    let rows = rows
+    with_smoothed_states(history, &step_of, |k| smoothed[k].mean())
+}
+
+/// `history` with each row's state replaced by its step's smoothed mean: row `i` takes
+/// `mean(step_of[i])`, its flags and time kept.
+///
+/// # Errors
+/// [`ScenarioError`] if the history cannot be rebuilt (it was valid, so it can).
+fn with_smoothed_states<'a>(
+    history: &TrackHistory,
+    step_of: &[usize],
+    mean: impl Fn(usize) -> &'a Vector<4>,
+) -> Result<TrackHistory, ScenarioError> {
+    let rows = history
+        .rows()
         .iter()
-        .zip(&step_of)
+        .zip(step_of)
         .map(|(r, &k)| {
-            let m = smoothed[k].mean();
+            let m = mean(k);
             TrackRow {
                 x: m[0],
                 vx: m[1],
@@ -245,21 +259,7 @@ pub(crate) fn smoothed_imm_track(
         return TrackHistory::new(history.name(), Vec::new()).map_err(ScenarioError::from);
     };
     let smoothed = track.smooth().map_err(|e| fail(&e))?;
-    let rows = rows
-        .iter()
-        .zip(&step_of)
-        .map(|(r, &k)| {
-            let m = smoothed[k].combined.mean();
-            TrackRow {
-                x: m[0],
-                vx: m[1],
-                y: m[2],
-                vy: m[3],
-                ..*r
-            }
-        })
-        .collect();
-    TrackHistory::new(history.name(), rows).map_err(ScenarioError::from)
+    with_smoothed_states(history, &step_of, |k| smoothed[k].combined.mean())
 }
 
 /// `Σ NEES` and the number of confirmed rows compared: each confirmed row's
