@@ -269,20 +269,18 @@ impl Setup {
                 }
             }
             let score = self.scorer.score(&histories, &self.truth)?;
-            let smoothed_position_rmse = match named.config.estimator {
+            let smoothed = match named.config.estimator {
                 EstimatorConfig::Kf | EstimatorConfig::Ekf => {
                     let kf = argus_filters::Kf::new(argus_motion_models::Cv2D::discrete(
                         named.config.sigma_a,
                     )?);
-                    let smoothed = histories
-                        .iter()
-                        .zip(&estimates)
-                        .map(|(h, e)| smoothed_track(&kf, h, e))
-                        .collect::<Result<Vec<_>, _>>()?;
-                    self.scorer
-                        .score(&smoothed, &self.truth)?
-                        .summary
-                        .position_rmse
+                    Some(
+                        histories
+                            .iter()
+                            .zip(&estimates)
+                            .map(|(h, e)| smoothed_track(&kf, h, e))
+                            .collect::<Result<Vec<_>, _>>()?,
+                    )
                 }
                 EstimatorConfig::ImmCv2 {
                     sigma_a_low,
@@ -290,17 +288,24 @@ impl Setup {
                     p_stay,
                 } => {
                     let imm = tracker_imm(sigma_a_low, sigma_a_high, p_stay)?;
-                    let smoothed = histories
-                        .iter()
-                        .zip(&imm_states)
-                        .map(|(h, e)| smoothed_imm_track(&imm, h, e))
-                        .collect::<Result<Vec<_>, _>>()?;
+                    Some(
+                        histories
+                            .iter()
+                            .zip(&imm_states)
+                            .map(|(h, e)| smoothed_imm_track(&imm, h, e))
+                            .collect::<Result<Vec<_>, _>>()?,
+                    )
+                }
+                _ => None,
+            };
+            let smoothed_position_rmse = match smoothed {
+                Some(tracks) => {
                     self.scorer
-                        .score(&smoothed, &self.truth)?
+                        .score(&tracks, &self.truth)?
                         .summary
                         .position_rmse
                 }
-                _ => None,
+                None => None,
             };
             let (nees_sum, nees_count) =
                 nees_against(&histories, &estimates, &self.truth_smoothed, self.cutoff);
