@@ -425,7 +425,9 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         let mut w = [0.0; R];
         let mut sum = 0.0;
         for ((wj, c), l) in w.iter_mut().zip(&cbar.lin).zip(&ll) {
-            *wj = c * (l - max).exp();
+            // The most likely mode's factor is e⁰ = 1 exactly (IEEE `exp(0)` is exact), so
+            // its exponential is not called: the same bits, one `exp` fewer per cycle.
+            *wj = if *l == max { *c } else { c * (l - max).exp() };
             sum += *wj;
         }
         let ln_sum = sum.ln();
