@@ -159,12 +159,17 @@ impl<const R: usize> DynImm for PlainImm<R> {
                 }
             };
             let meas = CartesianPosition::<4, 2>::cv(r).map_err(|e| fail(k, "SensorError", &e))?;
-            let upd = if *dt == 0.0 {
-                self.imm.update(&est.into_prediction(), &meas, &z)
+            if *dt == 0.0 {
+                let upd = self.imm.update(&est.into_prediction(), &meas, &z);
+                est = upd.map_err(|e| fail(k, "ImmError", &e))?.estimate;
             } else {
-                self.imm.step(&est, *dt, &meas, &z)
-            };
-            est = upd.map_err(|e| fail(k, "ImmError", &e))?.estimate;
+                // In place: the estimate is copied once per cycle, not three times
+                // (`Imm::step`'s working copy, its result and this assignment); on an
+                // error the run stops, so the restored estimate is not used.
+                self.imm
+                    .step_in_place(&mut est, *dt, &meas, &z)
+                    .map_err(|e| fail(k, "ImmError", &e))?;
+            }
             let c = est.combined().map_err(|e| fail(k, "ImmError", &e))?;
             push(&mut out, &c, &est.mode_probabilities());
         }

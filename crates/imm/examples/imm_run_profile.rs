@@ -82,12 +82,11 @@ fn main() {
             let c = conv.convert(plots[2 * k], plots[2 * k + 1]).unwrap();
             let (z, r) = (c.position + origin, c.covariance);
             let meas = CartesianPosition::<4, 2>::cv(r).unwrap();
-            let upd = if *dt == 0.0 {
-                imm.update(&est.into_prediction(), &meas, &z)
+            if *dt == 0.0 {
+                est = imm.update(&est.into_prediction(), &meas, &z).unwrap().estimate;
             } else {
-                imm.step(&est, *dt, &meas, &z)
-            };
-            est = upd.unwrap().estimate;
+                imm.step_in_place(&mut est, *dt, &meas, &z).unwrap();
+            }
             let c = est.combined().unwrap();
             xs.extend_from_slice(c.mean().as_slice());
             ps.extend_from_slice(c.cov().transpose().as_slice());

@@ -509,6 +509,32 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         })
     }
 
+    /// [`Imm::step`] in place: `est` becomes the updated estimate; returns
+    /// `(ln Λ, ln Λⱼ)`. On an error `est` is restored (left unchanged). For a batch run
+    /// that keeps only the latest estimate: the estimate (about 0.5 kB for 3 modes of 4
+    /// states) is copied once per cycle (the prior, which the mixing reads while it writes
+    /// the mixed modes) instead of three times ([`Imm::step`]'s working copy, its result,
+    /// and the caller's assignment).
+    ///
+    /// # Errors
+    /// As [`Imm::step`].
+    pub fn step_in_place<const M: usize, Me: MeasurementModel<N, M>>(
+        &self,
+        est: &mut ImmEstimate<N, R>,
+        dt: f64,
+        meas: &Me,
+        z: &Vector<M>,
+    ) -> Result<(f64, [f64; R]), ImmError> {
+        let prior = *est;
+        let result = self
+            .predict_into(&prior, dt, &mut est.modes)
+            .and_then(|cbar| self.update_in_place(est, &cbar, meas, z));
+        if result.is_err() {
+            *est = prior;
+        }
+        result
+    }
+
     /// One full cycle: [`Imm::predict`] over `dt`, then [`Imm::update`] with `z`.
     ///
     /// # Errors
