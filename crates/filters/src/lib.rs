@@ -120,4 +120,25 @@ pub trait GaussianFilter<const N: usize> {
         mp.update_in_place(estimate, &innov.residual)?;
         Ok(innov)
     }
+
+    /// One cycle in place, for a caller that keeps only the posterior (an IMM's mode): the
+    /// prediction over `dt`, then the update with `z`; returns the innovation. On an error
+    /// `estimate` is a valid Gaussian but unspecified (the prior or the prediction): callers
+    /// work on a copy. The default is [`GaussianFilter::predict_in_place`] then
+    /// [`GaussianFilter::update_in_place`]; [`Kf`] checks its intermediate prediction for
+    /// finiteness only (see there), the posterior fully.
+    ///
+    /// # Errors
+    /// As [`GaussianFilter::predict`] and [`GaussianFilter::update`].
+    #[inline(always)]
+    fn step_in_place<const M: usize, Me: MeasurementModel<N, M>>(
+        &self,
+        estimate: &mut Gaussian<N>,
+        dt: f64,
+        meas: &Me,
+        z: &Vector<M>,
+    ) -> Result<Innovation<M>, FilterError> {
+        self.predict_in_place(estimate, dt)?;
+        self.update_in_place(estimate, meas, z)
+    }
 }

@@ -1,11 +1,13 @@
 //! Helpers shared by the linearised filters (KF, EKF, second-order EKF, CD-EKF).
 
-use argus_core_math::{Gaussian, MathError, Matrix, Vector, check_finite_matrix, kernels};
+use argus_core_math::{
+    Gaussian, MathError, Matrix, Vector, check_finite_matrix, check_finite_vector, kernels,
+};
 use argus_sensors::MeasurementModel;
 
 use argus_motion_models::MotionModel;
 
-use crate::{CovarianceForm, FilterError, MeasurementPrediction, check_dt};
+use crate::{CovarianceForm, FilterError, Innovation, MeasurementPrediction, check_dt};
 
 /// Builds an estimate from a filter stage's mean and covariance, naming the stage
 /// in the error (`what_mean`, `what_cov`) when a value is non-finite or the
@@ -89,6 +91,50 @@ pub(crate) fn linearized_predict_in_place<const N: usize, Mo: MotionModel<N>>(
     .map_err(|e| name_process_noise(model, &x, dt, e))
 }
 
+/// The Kalman filter's cycle in place ([`crate::Kf`]'s `step_in_place`, whose docs say why
+/// the prediction is checked for finiteness only): `estimate` becomes the posterior, and is
+/// left unchanged on an error. Out of line: one call per mode of an IMM cycle, whose loop
+/// stays small enough for the compiler to inline every product in here (fully inlined into
+/// the cycle, the joseph update and the posterior covariance were left as calls, ~100
+/// instructions more per mode).
+#[inline(never)]
+pub(crate) fn linearized_step_in_place<const N: usize, const M: usize, Mo, Me>(
+    model: &Mo,
+    form: CovarianceForm,
+    estimate: &mut Gaussian<N>,
+    dt: f64,
+    meas: &Me,
+    z: &Vector<M>,
+) -> Result<Innovation<M>, FilterError>
+where
+    Mo: MotionModel<N>,
+    Me: MeasurementModel<N, M>,
+{
+    check_dt(dt)?;
+    let x = *estimate.mean();
+    let (mean, mut cov) = model.predict_moments(&x, estimate.cov(), dt);
+    // The lower triangle is what a prediction's covariance means (`checked_gaussian`).
+    kernels::mirror_lower(&mut cov);
+    // Named as the checked prediction names it: the mean first, then the covariance, or a
+    // non-finite `Q` as its cause.
+    if let Err(e) = check_finite_vector(&mean, "predicted mean")
+        .and_then(|()| check_finite_matrix(&cov, "predicted covariance"))
+    {
+        return Err(name_process_noise(model, &x, dt, FilterError::Math(e)));
+    }
+    let mp = first_order_measurement_of(&mean, &cov, meas, form)?;
+    let innov = mp.innovation(meas, z)?;
+    let (post_mean, post_cov) = mp.posterior_moments(&mean, &cov, &innov.residual)?;
+    assign_checked(
+        estimate,
+        post_mean,
+        post_cov,
+        "posterior mean",
+        "posterior covariance",
+    )?;
+    Ok(innov)
+}
+
 /// A failed prediction's error, or a non-finite `Q` named as its cause (examined only
 /// when the prediction failed).
 #[cold]
@@ -116,8 +162,21 @@ pub(crate) fn first_order_measurement<const N: usize, const M: usize, Me>(
 where
     Me: MeasurementModel<N, M>,
 {
-    let x = predicted.mean();
-    let P = predicted.cov();
+    first_order_measurement_of(predicted.mean(), predicted.cov(), meas, form)
+}
+
+/// [`first_order_measurement`] from a predicted mean `x` and symmetric covariance `P`.
+#[allow(non_snake_case)]
+#[inline(always)]
+fn first_order_measurement_of<const N: usize, const M: usize, Me>(
+    x: &Vector<N>,
+    P: &Matrix<N, N>,
+    meas: &Me,
+    form: CovarianceForm,
+) -> Result<MeasurementPrediction<N, M>, FilterError>
+where
+    Me: MeasurementModel<N, M>,
+{
     let z_pred = meas.predict(x);
     let H = meas.jacobian(x);
     let R = meas.noise(x);

@@ -202,7 +202,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
         predicted: &Gaussian<N>,
         residual: &Vector<M>,
     ) -> Result<Gaussian<N>, FilterError> {
-        let (mean, cov) = self.posterior_moments(predicted, residual)?;
+        let (mean, cov) = self.posterior_moments(predicted.mean(), predicted.cov(), residual)?;
         crate::linearized::checked_gaussian(mean, cov, "posterior mean", "posterior covariance")
     }
 
@@ -217,7 +217,7 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
         estimate: &mut Gaussian<N>,
         residual: &Vector<M>,
     ) -> Result<(), FilterError> {
-        let (mean, cov) = self.posterior_moments(estimate, residual)?;
+        let (mean, cov) = self.posterior_moments(estimate.mean(), estimate.cov(), residual)?;
         crate::linearized::assign_checked(
             estimate,
             mean,
@@ -227,16 +227,19 @@ impl<const N: usize, const M: usize> MeasurementPrediction<N, M> {
         )
     }
 
-    /// `x = x⁻ + K ν` and the posterior covariance (its lower triangle is what counts).
+    /// `x = x⁻ + K ν` and the posterior covariance (its lower triangle is what counts) from
+    /// the predicted mean and covariance this was computed from; not checked (the caller
+    /// builds a checked Gaussian from them).
     #[inline(always)]
-    fn posterior_moments(
+    pub(crate) fn posterior_moments(
         &self,
-        predicted: &Gaussian<N>,
+        predicted_mean: &Vector<N>,
+        predicted_cov: &Matrix<N, N>,
         residual: &Vector<M>,
     ) -> Result<(Vector<N>, Matrix<N, N>), FilterError> {
         check_finite_vector(residual, "residual")?;
-        let mean = predicted.mean() + kernels::mul(&self.gain, residual);
-        Ok((mean, self.posterior_cov(predicted.cov())))
+        let mean = predicted_mean + kernels::mul(&self.gain, residual);
+        Ok((mean, self.posterior_cov(predicted_cov)))
     }
 
     /// The posterior covariance of an update with a plot (independent of the residual).

@@ -410,6 +410,49 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         z: &Vector<M>,
     ) -> Result<(f64, [f64; R]), ImmError> {
         let ll = self.update_modes(est, meas, z)?;
+        Self::weigh_modes(est, cbar, ll)
+    }
+
+    /// One cycle from `prior` into `est` (which must hold `prior`'s modes): mixing, each
+    /// mode's prediction and update in one [`GaussianFilter::step_in_place`] (for a Kalman
+    /// filter its intermediate prediction is checked for finiteness, the posterior in full),
+    /// then the mode probabilities; returns `(ln Λ, ln Λⱼ)`. The same values as
+    /// [`Imm::predict_into`] then [`Imm::update_in_place`]; when several things are wrong
+    /// the error may name another of them (mode by mode rather than all predictions first).
+    /// On an error `est` is left partly updated: callers work on a copy.
+    fn cycle_into<const M: usize, Me: MeasurementModel<N, M>>(
+        &self,
+        prior: &ImmEstimate<N, R>,
+        dt: f64,
+        meas: &Me,
+        z: &Vector<M>,
+        est: &mut ImmEstimate<N, R>,
+    ) -> Result<(f64, [f64; R]), ImmError> {
+        check_dt(dt).map_err(|_| ImmError::InvalidInterval { dt })?;
+        let cbar = self.mix_into(prior, &mut est.modes)?;
+        let mut ll = [f64::NEG_INFINITY; R];
+        for (j, ((f, g), l)) in self
+            .filters
+            .iter()
+            .zip(est.modes.iter_mut())
+            .zip(ll.iter_mut())
+            .enumerate()
+        {
+            match f.step_in_place(g, dt, meas, z) {
+                Ok(innov) => *l = innov.log_likelihood(),
+                Err(source) => return Err(ImmError::Filter { mode: j, source }),
+            }
+        }
+        Self::weigh_modes(est, &cbar, ll)
+    }
+
+    /// Eq (6) after the mode-matched updates: `μⱼ ∝ μ̄ⱼ Λⱼ` into `est` from `μ̄ⱼ` = `cbar`
+    /// and `ln Λⱼ` = `ll`; returns `(ln Λ, ln Λⱼ)`.
+    fn weigh_modes(
+        est: &mut ImmEstimate<N, R>,
+        cbar: &ModeWeights<R>,
+        ll: [f64; R],
+    ) -> Result<(f64, [f64; R]), ImmError> {
         if !cbar.lin.iter().all(|&c| c >= TINY) {
             // A predicted probability kept as a logarithm: the update in log space.
             let total = Self::update_log_space(est, &cbar.logs(), &ll)?;
@@ -526,9 +569,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         z: &Vector<M>,
     ) -> Result<(f64, [f64; R]), ImmError> {
         let prior = *est;
-        let result = self
-            .predict_into(&prior, dt, &mut est.modes)
-            .and_then(|cbar| self.update_in_place(est, &cbar, meas, z));
+        let result = self.cycle_into(&prior, dt, meas, z, est);
         if result.is_err() {
             *est = prior;
         }
@@ -547,9 +588,8 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         z: &Vector<M>,
     ) -> Result<ImmUpdate<N, R>, ImmError> {
         let mut estimate = *est;
-        let cbar = self.predict_into(est, dt, &mut estimate.modes)?;
         let (log_likelihood, mode_log_likelihoods) =
-            self.update_in_place(&mut estimate, &cbar, meas, z)?;
+            self.cycle_into(est, dt, meas, z, &mut estimate)?;
         Ok(ImmUpdate {
             estimate,
             log_likelihood,
