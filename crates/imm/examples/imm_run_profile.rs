@@ -24,7 +24,9 @@ use argus_sensors::{CartesianPosition, UnbiasedPolarConversion};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let path = args.get(1).expect("usage: imm_run_profile <plots.csv> <reps>");
+    let path = args
+        .get(1)
+        .expect("usage: imm_run_profile <plots.csv> <reps>");
     let reps: usize = args.get(2).map_or(100, |s| s.parse().unwrap());
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
@@ -45,7 +47,9 @@ fn main() {
         [
             Kf::new(PlanarModel::from(Cv2D::discrete(0.5).unwrap())),
             Kf::new(PlanarModel::from(CoordinatedTurn::new(omega, 0.5).unwrap())),
-            Kf::new(PlanarModel::from(CoordinatedTurn::new(-omega, 0.5).unwrap())),
+            Kf::new(PlanarModel::from(
+                CoordinatedTurn::new(-omega, 0.5).unwrap(),
+            )),
         ],
         MarkovMatrix::new([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]]).unwrap(),
     )
@@ -59,7 +63,12 @@ fn main() {
             d
         })
         .collect();
-    let x0 = [plots[0] * plots[1].cos(), 0.0, plots[0] * plots[1].sin(), 0.0];
+    let x0 = [
+        plots[0] * plots[1].cos(),
+        0.0,
+        plots[0] * plots[1].sin(),
+        0.0,
+    ];
     let conv = UnbiasedPolarConversion::new(70.0, 0.08_f64.to_radians()).unwrap();
     let origin = Vector::<2>::zeros();
     let mut last = (Vec::new(), Vec::new(), Vec::new());
@@ -83,7 +92,10 @@ fn main() {
             let (z, r) = (c.position + origin, c.covariance);
             let meas = CartesianPosition::<4, 2>::cv(r).unwrap();
             if *dt == 0.0 {
-                est = imm.update(&est.into_prediction(), &meas, &z).unwrap().estimate;
+                est = imm
+                    .update(&est.into_prediction(), &meas, &z)
+                    .unwrap()
+                    .estimate;
             } else {
                 imm.step_in_place(&mut est, *dt, &meas, &z).unwrap();
             }

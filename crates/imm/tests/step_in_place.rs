@@ -33,8 +33,8 @@ fn start() -> ImmEstimate<4, 3> {
 #[test]
 fn step_in_place_equals_step_bit_for_bit() {
     let imm = imm();
-    let meas = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::new(900.0, 40.0, 40.0, 400.0))
-        .unwrap();
+    let meas =
+        CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::new(900.0, 40.0, 40.0, 400.0)).unwrap();
     let (mut a, mut b) = (start(), start());
     let (mut x, mut y, mut heading) = (-60_000.0_f64, -20_000.0_f64, 0.0_f64);
     for k in 0..120 {
