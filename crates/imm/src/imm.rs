@@ -470,7 +470,12 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         for ((wj, c), l) in w.iter_mut().zip(&cbar.lin).zip(&ll) {
             // The most likely mode's factor is e⁰ = 1 exactly (IEEE `exp(0)` is exact), so
             // its exponential is not called: the same bits, one `exp` fewer per cycle.
-            *wj = if *l == max { *c } else { c * (l - max).exp() };
+            // (`max` is one of the `ll` themselves, so its bits match that mode's.)
+            *wj = if l.to_bits() == max.to_bits() {
+                *c
+            } else {
+                c * (l - max).exp()
+            };
             sum += *wj;
         }
         let ln_sum = sum.ln();
