@@ -125,6 +125,8 @@
 
 mod backward;
 mod error;
+#[cfg(feature = "gibbs")]
+pub mod gibbs;
 mod likelihood;
 mod track;
 
