@@ -33,6 +33,65 @@ impl<const N: usize> Info<N> {
 
 const LN_2PI: f64 = 1.837_877_066_409_345_5;
 
+/// The lower Cholesky factor `L` of a symmetric `A = L Lᵀ` (only the lower triangle of `A`
+/// is read) and `Π Lᵢᵢ`; `None` unless `A` is positive definite. Written out for the
+/// sweep's 2×2 and 4×4 matrices: the generic factorisation was a quarter of a sweep.
+fn cholesky<const N: usize>(a: &Matrix<N, N>) -> Option<(Matrix<N, N>, f64)> {
+    let mut l = Matrix::<N, N>::zeros();
+    let mut prod = 1.0;
+    for j in 0..N {
+        let mut d = a[(j, j)];
+        for k in 0..j {
+            d -= l[(j, k)] * l[(j, k)];
+        }
+        if !(d > 0.0 && d.is_finite()) {
+            return None;
+        }
+        let ljj = d.sqrt();
+        prod *= ljj;
+        l[(j, j)] = ljj;
+        let inv = 1.0 / ljj;
+        for i in j + 1..N {
+            let mut s = a[(i, j)];
+            for k in 0..j {
+                s -= l[(i, k)] * l[(j, k)];
+            }
+            l[(i, j)] = s * inv;
+        }
+    }
+    Some((l, prod))
+}
+
+/// `L⁻ᵀ B` for a lower-triangular `L` of nonzero diagonal (back substitution on `Lᵀ`).
+fn back<const N: usize, const C: usize>(l: &Matrix<N, N>, b: &Matrix<N, C>) -> Matrix<N, C> {
+    let mut x = *b;
+    for c in 0..C {
+        for i in (0..N).rev() {
+            let mut s = x[(i, c)];
+            for k in i + 1..N {
+                s -= l[(k, i)] * x[(k, c)];
+            }
+            x[(i, c)] = s / l[(i, i)];
+        }
+    }
+    x
+}
+
+/// `L⁻¹ B` for a lower-triangular `L` of nonzero diagonal (forward substitution).
+fn forward<const N: usize, const C: usize>(l: &Matrix<N, N>, b: &Matrix<N, C>) -> Matrix<N, C> {
+    let mut x = *b;
+    for c in 0..C {
+        for i in 0..N {
+            let mut s = x[(i, c)];
+            for k in 0..i {
+                s -= l[(i, k)] * x[(k, c)];
+            }
+            x[(i, c)] = s / l[(i, i)];
+        }
+    }
+    x
+}
+
 /// `F x, F P Fᵀ + Q` of mode `j`.
 pub(super) fn predict<const N: usize, const D: usize, const R: usize>(
     g: &Moments<N>,
@@ -57,17 +116,15 @@ pub(super) fn update<const N: usize, const D: usize, const R: usize>(
 ) -> Option<(Moments<N>, f64)> {
     let hp: Matrix<D, N> = kernels::mul(&s.h, &g.p);
     let sm: Matrix<D, D> = kernels::mul_transpose(&hp, &s.h) + s.r;
-    let chol = sm.cholesky()?;
-    let l = chol.l();
+    let (l, diag) = cholesky(&sm)?;
     let nu = s.z - kernels::mul(&s.h, &g.x);
-    let w = l.solve_lower_triangular(&hp)?;
-    let e = l.solve_lower_triangular(&nu)?;
+    let w = forward(&l, &hp);
+    let e = forward(&l, &nu);
     let x = g.x + w.tr_mul(&e);
     let mut p = g.p;
     kernels::sub_mul_transpose_lower(&mut p, &w.transpose(), &w.transpose());
     kernels::mirror_lower(&mut p);
-    let log_det: f64 = (0..D).map(|i| l[(i, i)].ln()).sum();
-    let ll = -0.5 * (D as f64 * LN_2PI + 2.0 * log_det + e.norm_squared());
+    let ll = -0.5 * (D as f64 * LN_2PI + 2.0 * diag.ln() + e.norm_squared());
     ll.is_finite().then_some((Moments { x, p }, ll))
 }
 
@@ -77,15 +134,13 @@ pub(super) fn update<const N: usize, const D: usize, const R: usize>(
 /// L M⁻¹ Lᵀ`, so the last term is `½ ‖K⁻¹ Lᵀ b‖²`. `None` if `P` or `M` is not positive
 /// definite.
 pub(super) fn log_integral<const N: usize>(g: &Moments<N>, b: &Info<N>) -> Option<f64> {
-    let l = g.p.cholesky()?.unpack();
-    let mut m = Matrix::<N, N>::identity() + kernels::congruence(&l.transpose(), &b.omega);
-    kernels::mirror_lower(&mut m);
-    let k = m.cholesky()?.unpack();
+    let (l, _) = cholesky(&g.p)?;
+    let m = Matrix::<N, N>::identity() + kernels::congruence(&l.transpose(), &b.omega);
+    let (k, diag) = cholesky(&m)?;
     let om_mu = kernels::mul(&b.omega, &g.x);
     let r = b.eta - om_mu;
-    let c = k.solve_lower_triangular(&l.tr_mul(&r))?;
-    let log_det: f64 = (0..N).map(|i| k[(i, i)].ln()).sum();
-    let v = -log_det - 0.5 * g.x.dot(&om_mu) + b.eta.dot(&g.x) + 0.5 * c.norm_squared();
+    let c = forward(&k, &l.tr_mul(&r));
+    let v = -diag.ln() - 0.5 * g.x.dot(&om_mu) + b.eta.dot(&g.x) + 0.5 * c.norm_squared();
     v.is_finite().then_some(v)
 }
 
@@ -115,9 +170,10 @@ pub(super) fn rts<const N: usize>(
     pred: &Moments<N>,
     next: &Moments<N>,
 ) -> Option<Moments<N>> {
-    let chol = pred.p.cholesky()?;
-    // G = (P⁻¹ F Pₖ)ᵀ with P the (symmetric) prediction covariance.
-    let g = chol.solve(&kernels::mul(f, &filtered.p)).transpose();
+    // G = (P⁻¹ F Pₖ)ᵀ with P = L Lᵀ the prediction covariance.
+    let (l, _) = cholesky(&pred.p)?;
+    let y = forward(&l, &kernels::mul(f, &filtered.p));
+    let g = back(&l, &y).transpose();
     let x = filtered.x + kernels::mul(&g, &(next.x - pred.x));
     let p = filtered.p + kernels::congruence(&g, &(next.p - pred.p));
     Some(Moments { x, p })

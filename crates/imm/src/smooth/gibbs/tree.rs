@@ -1,7 +1,11 @@
 //! The exhaustive search over one block's mode paths: a tree of Kalman steps from the
 //! filtered state before the block, each leaf weighed by its prior between the block's
 //! neighbours, its plots' likelihoods and its last posterior's integral against the
-//! backward information. `R + R² + … + R^L` Kalman steps for a block of `L`; paths of
+//! backward information. The last plot's likelihood and that integral are one integral,
+//! `N(z; H x̂, S) ∫ N(x; x̂⁺, P⁺) β(x) dx = c(z) ∫ N(x; x̂⁻, P⁻) exp(−½ xᵀ (Ω + Hᵀ R⁻¹ H) x
+//! + (η + Hᵀ R⁻¹ z)ᵀ x) dx` with `c(z) = N(z; 0, R)` the same for every leaf (it cancels
+//! in the normalisation): the leaves take a prediction and that integral, no update.
+//! `R + R² + … + R^(L−1)` Kalman updates and `R^L` predictions for a block of `L`; paths of
 //! zero prior are cut where they start. The buffers are the chain's, grown once.
 
 use super::error::GibbsError;
@@ -72,9 +76,15 @@ impl<const N: usize> Tree<N> {
         self.weights.clear();
         self.paths.clear();
         self.stack[0] = *prev;
-        self.grow(p, seq, k, 0, 0.0, beta)
+        let last = &p.steps[k + len - 2];
+        let with_plot = Info {
+            omega: beta.omega + last.info,
+            eta: beta.eta + last.info_z,
+        };
+        self.grow(p, seq, k, 0, 0.0, &with_plot)
     }
 
+    /// `beta`: the backward information at the block's last step with its plot.
     fn grow<const D: usize, const R: usize>(
         &mut self,
         p: &GibbsProblem<N, D, R>,
@@ -102,21 +112,21 @@ impl<const N: usize> Tree<N> {
                 continue;
             }
             let pred = kalman::predict(&g, sm, j);
-            let (post, ll) =
-                kalman::update(&pred, sm).ok_or(GibbsError::NotPositiveDefinite {
-                    step: site,
-                    what: "innovation covariance",
-                })?;
-            w += ll;
             self.path[depth] = j;
             if last {
-                let li = kalman::log_integral(&post, beta).ok_or(GibbsError::StepFailed {
+                let li = kalman::log_integral(&pred, beta).ok_or(GibbsError::StepFailed {
                     step: site,
-                    what: "the integral against the backward information (I + PΩ singular)",
+                    what: "the integral against the backward information (a covariance not positive definite)",
                 })?;
                 self.weights.push(w + li);
                 self.paths.extend_from_slice(&self.path[..self.len]);
             } else {
+                let (post, ll) =
+                    kalman::update(&pred, sm).ok_or(GibbsError::NotPositiveDefinite {
+                        step: site,
+                        what: "innovation covariance",
+                    })?;
+                w += ll;
                 self.stack[depth + 1] = post;
                 self.grow(p, seq, k, depth + 1, w, beta)?;
             }
