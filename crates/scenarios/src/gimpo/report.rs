@@ -125,14 +125,19 @@ fn smoothing_rows(
                 .paper_text("consistent: inside the 99 % band")
                 .note(format!(
                     "{} the band; {band_text}",
-                    if band.contains(a) { "inside" } else { "outside" }
+                    if band.contains(a) {
+                        "inside"
+                    } else {
+                        "outside"
+                    }
                 )),
         );
     }
-    for (key, v) in [("smooth_anees_lo", band.lower), ("smooth_anees_hi", band.upper)] {
-        rows.push(
-            Row::new(key, "99 % band of the smoothed ANEES", v, "-").note(band_text.clone()),
-        );
+    for (key, v) in [
+        ("smooth_anees_lo", band.lower),
+        ("smooth_anees_hi", band.upper),
+    ] {
+        rows.push(Row::new(key, "99 % band of the smoothed ANEES", v, "-").note(band_text.clone()));
     }
     Ok(())
 }

@@ -52,13 +52,22 @@ impl<const N: usize, const D: usize, const R: usize> GibbsProblem<N, D, R> {
         }
         let mut tree = Tree::new(len, R, g);
         tree.search(self, seq, k, len, &g, &beta)?;
-        let max = tree.weights.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let max = tree
+            .weights
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
         let total: f64 = tree.weights.iter().map(|l| (l - max).exp()).sum();
         Ok(tree
             .weights
             .iter()
             .enumerate()
-            .map(|(i, l)| (tree.paths[i * len..(i + 1) * len].to_vec(), (l - max).exp() / total))
+            .map(|(i, l)| {
+                (
+                    tree.paths[i * len..(i + 1) * len].to_vec(),
+                    (l - max).exp() / total,
+                )
+            })
             .collect())
     }
 

@@ -61,7 +61,9 @@ pub enum GibbsError {
     },
     /// A start mode sequence with a mode out of range or a transition of zero prior
     /// probability at this step.
-    #[error("start mode sequence: step {step} has mode {mode}, out of range or of zero prior probability after the step before")]
+    #[error(
+        "start mode sequence: step {step} has mode {mode}, out of range or of zero prior probability after the step before"
+    )]
     InvalidSequence {
         /// The step.
         step: usize,

@@ -70,8 +70,9 @@ pub fn pooled<const N: usize, const D: usize, const R: usize>(
             / total;
         let state = Gaussian::from_symmetrized(mean, &cov)
             .map_err(|source| GibbsError::Estimate { step: k, source })?;
-        let mode_probabilities =
-            core::array::from_fn(|j| parts.iter().map(|a| a.modes[j] * a.weight).sum::<f64>() / total);
+        let mode_probabilities = core::array::from_fn(|j| {
+            parts.iter().map(|a| a.modes[j] * a.weight).sum::<f64>() / total
+        });
         out.push(GibbsSmoothed {
             state,
             mode_probabilities,

@@ -85,12 +85,16 @@ impl<const N: usize, const D: usize, const R: usize> GibbsProblem<N, D, R> {
             });
         }
         let sum: f64 = mu0.iter().sum();
-        if mu0.iter().any(|p| !(p.is_finite() && *p >= 0.0)) || (sum - 1.0).abs() > PROBABILITY_SUM_TOL
+        if mu0.iter().any(|p| !(p.is_finite() && *p >= 0.0))
+            || (sum - 1.0).abs() > PROBABILITY_SUM_TOL
         {
             return Err(GibbsError::InvalidPrior);
         }
         if !times[0].is_finite() {
-            return Err(GibbsError::NonFinite { step: 0, what: "time" });
+            return Err(GibbsError::NonFinite {
+                step: 0,
+                what: "time",
+            });
         }
         let m = imm.markov().matrix();
         let log_pi = core::array::from_fn(|i| core::array::from_fn(|j| ln(m[(i, j)])));
@@ -118,13 +122,13 @@ impl<const N: usize, const D: usize, const R: usize> GibbsProblem<N, D, R> {
             finite(&h, step, "measurement matrix H")?;
             finite(&r, step, "measurement noise R")?;
             finite(z, step, "plot")?;
-            let rinv = r
-                .cholesky()
-                .map(|c| c.inverse())
-                .ok_or(GibbsError::NotPositiveDefinite {
-                    step,
-                    what: "measurement noise R",
-                })?;
+            let rinv =
+                r.cholesky()
+                    .map(|c| c.inverse())
+                    .ok_or(GibbsError::NotPositiveDefinite {
+                        step,
+                        what: "measurement noise R",
+                    })?;
             let ht_rinv = h.transpose() * rinv;
             let info = ht_rinv * h;
             steps.push(StepModel {

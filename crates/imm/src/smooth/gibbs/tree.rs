@@ -44,7 +44,8 @@ impl<const N: usize> Tree<N> {
             self.path.resize(block, 0);
             self.stack.resize(block, start);
         }
-        self.weights.reserve(leaves.saturating_sub(self.weights.len()));
+        self.weights
+            .reserve(leaves.saturating_sub(self.weights.len()));
         self.paths
             .reserve((leaves * block).saturating_sub(self.paths.len()));
     }
