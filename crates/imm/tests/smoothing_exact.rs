@@ -338,7 +338,7 @@ struct Enumerated<'a, const R: usize> {
 impl<const R: usize> Enumerated<'_, R> {
     /// The library's Gibbs problem of the same model (the plots after the start).
     fn gibbs(&self) -> GibbsProblem<4, 2, R> {
-        let imm = Imm::new(self.filters.clone(), MarkovMatrix::new(self.pi).unwrap()).unwrap();
+        let imm = Imm::new(*self.filters, MarkovMatrix::new(self.pi).unwrap()).unwrap();
         GibbsProblem::new(&imm, self.mu0, &self.g0, self.times, &self.plots[1..]).unwrap()
     }
 }

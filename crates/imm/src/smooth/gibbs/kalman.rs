@@ -128,8 +128,8 @@ pub(super) fn update<const N: usize, const D: usize, const R: usize>(
     ll.is_finite().then_some((Moments { x, p }, ll))
 }
 
-/// `ln ∫ N(x; μ, P) exp(−½ xᵀ Ω x + ηᵀ x) dx = −½ ln |I + P Ω| − ½ μᵀ Ω μ + ηᵀ μ
-/// + ½ bᵀ (I + P Ω)⁻¹ P b`, `b = η − Ω μ`, in symmetric form: with `P = L Lᵀ` and
+/// `ln ∫ N(x; μ, P) exp(−½ xᵀ Ω x + ηᵀ x) dx =
+/// −½ ln |I + P Ω| − ½ μᵀ Ω μ + ηᵀ μ + ½ bᵀ (I + P Ω)⁻¹ P b`, `b = η − Ω μ`, in symmetric form: with `P = L Lᵀ` and
 /// `M = I + Lᵀ Ω L = K Kᵀ` (both Cholesky), `|I + P Ω| = |M|` and `(I + P Ω)⁻¹ P =
 /// L M⁻¹ Lᵀ`, so the last term is `½ ‖K⁻¹ Lᵀ b‖²`. `None` if `P` or `M` is not positive
 /// definite.

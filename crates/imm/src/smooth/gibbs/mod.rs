@@ -4,8 +4,8 @@
 //! `gibbs` (it needs a random generator; the IMM smoother of [`crate::smooth`] does not).
 //!
 //! # Model
-//! [`GibbsProblem`]: `m₀ ~ μ₀`, `mₖ | mₖ₋₁ ~ π`, `x₀ ~ g₀` at `t₀`, `xₖ = F_{mₖ}(Δₖ) xₖ₋₁
-//! + w`, `w ~ N(0, Q_{mₖ}(Δₖ))`, `zₖ = Hₖ xₖ + v`, `v ~ N(0, Rₖ)` for `k = 1 … n` — the IMM's
+//! [`GibbsProblem`]: `m₀ ~ μ₀`, `mₖ | mₖ₋₁ ~ π`, `x₀ ~ g₀` at `t₀`,
+//! `xₖ = F_{mₖ}(Δₖ) xₖ₋₁ + w`, `w ~ N(0, Q_{mₖ}(Δₖ))`, `zₖ = Hₖ xₖ + v`, `v ~ N(0, Rₖ)` for `k = 1 … n` — the IMM's
 //! own Kalman modes, Markov matrix and per-step linear measurement models. Generic over
 //! the state dimension `N`, the plot's `D` and the number of modes `R`; linear models only
 //! (`F`, `Q`, `H`, `R` tabulated once per problem).

@@ -2,8 +2,8 @@
 //! filtered state before the block, each leaf weighed by its prior between the block's
 //! neighbours, its plots' likelihoods and its last posterior's integral against the
 //! backward information. The last plot's likelihood and that integral are one integral,
-//! `N(z; H x̂, S) ∫ N(x; x̂⁺, P⁺) β(x) dx = c(z) ∫ N(x; x̂⁻, P⁻) exp(−½ xᵀ (Ω + Hᵀ R⁻¹ H) x
-//! + (η + Hᵀ R⁻¹ z)ᵀ x) dx` with `c(z) = N(z; 0, R)` the same for every leaf (it cancels
+//! `N(z; H x̂, S) ∫ N(x; x̂⁺, P⁺) β(x) dx =
+//! c(z) ∫ N(x; x̂⁻, P⁻) exp(−½ xᵀ (Ω + Hᵀ R⁻¹ H) x + (η + Hᵀ R⁻¹ z)ᵀ x) dx` with `c(z) = N(z; 0, R)` the same for every leaf (it cancels
 //! in the normalisation): the leaves take a prediction and that integral, no update.
 //! `R + R² + … + R^(L−1)` Kalman updates and `R^L` predictions for a block of `L`; paths of
 //! zero prior are cut where they start. The buffers are the chain's, grown once.
