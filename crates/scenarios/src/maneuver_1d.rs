@@ -72,8 +72,12 @@ fn run_seed(seed: u64, run: u64) -> u64 {
 /// then the maneuver-free run under GLRT with N = 0 for each η (SPEC's setting).
 type RunOutcomes = Vec<Vec<Outcome1d>>;
 
-/// The default detector of issue 17's requirement: GLRT alone at the second threshold.
-const DEFAULT_COMBO: usize = 2;
+/// The `(η, compensation)` index of issue 17's default detector: the second threshold
+/// with the compensation `default_comp` selects (0: GLRT alone, the crate's default;
+/// 1: GLRT + MRAS), in `etas × COMPS` order.
+fn default_combo(default_comp: usize) -> usize {
+    COMPS.len() + default_comp
+}
 
 fn one_run(c: &Maneuver1dConfig, etas: &[f64; 3], seed: u64) -> Result<RunOutcomes, ScenarioError> {
     let mut out = CASES
@@ -155,6 +159,13 @@ impl Scenario for Maneuver1d {
                 help: "third GLRT threshold",
             },
             ParamSpec {
+                key: "default_comp",
+                default: 0.0,
+                min: 0.0,
+                max: 1.0,
+                help: "compensation of the default rows: 0 GLRT alone (the crate's default), 1 GLRT + MRAS",
+            },
+            ParamSpec {
                 key: "q",
                 default: d.q,
                 min: 0.0,
@@ -225,6 +236,8 @@ pub(crate) struct Setup {
     c: Maneuver1dConfig,
     etas: [f64; 3],
     lambda: f64,
+    /// Index into [`COMPS`] of the compensation the `*_default_*` rows report.
+    default_comp: usize,
 }
 
 /// What the reduce step keeps: per case and (η, compensation) the statistics' sums, and
@@ -257,7 +270,14 @@ impl Campaign for Maneuver1d {
     fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let (c, etas) = config(p)?;
         let lambda = noise_free_statistic(&c, 2.0, 0.5).map_err(err)?;
-        Ok(Setup { c, etas, lambda })
+        // Params checks the range [0, 1]; below 0.5 reads as GLRT alone, else GLRT + MRAS.
+        let default_comp = usize::from(p.get("default_comp")? >= 0.5);
+        Ok(Setup {
+            c,
+            etas,
+            lambda,
+            default_comp,
+        })
     }
 
     fn one_run(
@@ -301,8 +321,15 @@ impl Campaign for Maneuver1d {
 
     #[allow(clippy::too_many_lines)]
     fn finish(&self, s: &Setup, sums: Sums1d) -> Result<Report, ScenarioError> {
-        let Setup { c, etas, lambda } = s;
+        let Setup {
+            c,
+            etas,
+            lambda,
+            default_comp,
+        } = s;
         let (c, etas, lambda) = (*c, *etas, *lambda);
+        let (comp_name, _) = COMPS[*default_comp];
+        let default = default_combo(*default_comp);
 
         let mut rows = Vec::new();
         let mut series = Vec::new();
@@ -332,11 +359,11 @@ impl Campaign for Maneuver1d {
                         ),
                     ));
                 }
-                if let Some(s) = stats.get(DEFAULT_COMBO) {
+                if let Some(s) = stats.get(default) {
                     rows.push(Row::with_text(
                         "maneuver_free_detections_default".into(),
                         format!(
-                            "no maneuver, glrt, eta {}: detections over all runs",
+                            "no maneuver, {comp_name}, eta {}: detections over all runs",
                             etas[1]
                         ),
                         None,
@@ -434,8 +461,8 @@ impl Campaign for Maneuver1d {
                     "summed over runs",
                 ));
             }
-            if let Some(s) = stats.get(DEFAULT_COMBO) {
-                let q = format!("{case} default (glrt, eta {})", etas[1]);
+            if let Some(s) = stats.get(default) {
+                let q = format!("{case} default ({comp_name}, eta {})", etas[1]);
                 for (i, sw) in s.switches.iter().enumerate() {
                     rows.push(Row::with_text(
                         format!("{case}_default_delay_mean_{i}"),
