@@ -132,4 +132,5 @@ mod track;
 
 pub use backward::{ImmSmoothed, PairWeights, imm_smooth};
 pub use error::ImmSmoothError;
+pub(crate) use likelihood::BackwardLikelihood;
 pub use track::{ImmStep, ImmTrack, ImmTransition};
