@@ -203,7 +203,7 @@ fn bad_smoothing_flags_are_clear_errors() {
     let (code, err, _) = track(dir.path(), &multi, &plots, &["--smooth"]);
     assert_eq!(code, Some(2));
     assert!(
-        err.contains("estimator.kind") && err.contains("kf-converted, ekf and imm"),
+        err.contains("estimator.kind") && err.contains("kf-converted, ekf, imm and aircraft-imm"),
         "{err}"
     );
 }
@@ -305,7 +305,7 @@ fn the_tracker_smooths_each_confirmed_track_over_its_life() {
     assert_eq!(code, Some(0), "{err}");
     let imm_rows = rows(&csv);
     assert!(imm_rows.iter().any(|r| !r["mu_1s"].is_empty()));
-    // The multi-IMM and the aircraft IMM are refused: tests/smooth_imm_tracks.rs.
+    // The multi-IMM is refused: tests/smooth_imm_tracks.rs.
 }
 
 #[test]

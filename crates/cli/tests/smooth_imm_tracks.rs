@@ -276,7 +276,7 @@ fn a_fixed_lag_as_long_as_the_track_is_the_fixed_interval_smoother() {
 }
 
 #[test]
-fn the_multi_imm_and_the_aircraft_imm_are_refused_by_name() {
+fn the_multi_imm_is_refused_by_name() {
     let dir = tempfile::tempdir().unwrap();
     let plots = dir.path().join("p.csv");
     write_plots(&plots, None);
@@ -290,21 +290,8 @@ fn the_multi_imm_and_the_aircraft_imm_are_refused_by_name() {
     assert_eq!(code, Some(2), "{err}");
     assert!(csv.is_empty());
     assert!(
-        err.contains("estimator.kind") && err.contains("kf-converted, ekf and imm"),
+        err.contains("estimator.kind") && err.contains("kf-converted, ekf, imm and aircraft-imm"),
         "{err}"
     );
-    let aircraft = "[[sensor]]\nid = 1\nposition = [0.0, 0.0]\nsigma_range = 50.0\nsigma_azimuth_deg = 0.1\n\n[estimator]\nkind = \"aircraft-imm\"\n\n[tracker]\nconfirm_m = 3\nconfirm_n = 4\nmax_misses = 3\n";
-    let polar = dir.path().join("polar.csv");
-    std::fs::write(
-        &polar,
-        "t,sensor,range,azimuth\n0,1,10000,0.5\n2,1,10100,0.5\n",
-    )
-    .unwrap();
-    let (code, err, csv) = track(dir.path(), aircraft, &polar, &["--smooth"]);
-    assert_eq!(code, Some(2), "{err}");
-    assert!(csv.is_empty());
-    assert!(
-        err.contains("estimator.kind") && err.contains("unequal state sizes"),
-        "{err}"
-    );
+    // The aircraft IMM's tracks are smoothed: tests/smooth_aircraft_tracks.rs.
 }

@@ -485,7 +485,8 @@ fn bad_aircraft_configs_name_file_line_and_field() {
             "aircraft IMM needs polar plots",
         ],
     );
-    // Smoothing is not built for it (single target and tracker).
+    // Smoothing is built for it (single target and tracker; tests/smooth_aircraft_tracks.rs
+    // checks the values): the smoothed mode probabilities are written.
     for extra in ["", "\n[tracker]"] {
         std::fs::write(d.join("a.toml"), cfg(extra)).unwrap();
         let o = argus(
@@ -495,10 +496,11 @@ fn bad_aircraft_configs_name_file_line_and_field() {
             d,
         );
         let err = String::from_utf8_lossy(&o.stderr);
-        assert_error(
-            o.status.code(),
-            &err,
-            &["field 'estimator.kind'", "--smooth"],
+        assert_eq!(o.status.code(), Some(0), "{extra:?}: {err}");
+        let out = std::fs::read_to_string(d.join("s.csv")).unwrap();
+        assert!(
+            out.lines().next().unwrap().ends_with("mu_1s,mu_2s,mu_3s"),
+            "{out}"
         );
     }
     // Single-target: a Cartesian report, and a plot of another sensor.

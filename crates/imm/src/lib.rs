@@ -23,6 +23,9 @@
 //! - [`ImmTrack`], [`imm_smooth`]: fixed-interval IMM smoothing (forward–backward, after
 //!   Kim's 1994 pairwise form weighed by each mode's backward likelihood) with smoothed mode
 //!   probabilities; the equations and references are in [`smooth`].
+//! - [`AircraftTrack`], [`aircraft_smooth`]: the same smoother for the aircraft IMM's
+//!   modes of unequal state sizes (each pair brought into the later mode's state by the
+//!   forward mixing map; [`aircraft`] module, docs/smoothing.md).
 //! - Polar plots are converted with the unbiased conversion ([`unbiased_conversion`],
 //!   [`UnbiasedConversion`]) using each hypothesis' own variances.
 //!
@@ -61,8 +64,9 @@ mod test_support;
 mod tests;
 
 pub use aircraft::{
-    AircraftEkf, AircraftEstimate, AircraftImm, AircraftPrediction, AircraftRadar, AircraftTuning,
-    AircraftUpdate, Augmentation, start_from_cv, two_point_start,
+    AircraftEkf, AircraftEstimate, AircraftImm, AircraftPrediction, AircraftRadar,
+    AircraftSmoothed, AircraftStep, AircraftTrack, AircraftTransition, AircraftTuning,
+    AircraftUpdate, Augmentation, PairTransition, aircraft_smooth, start_from_cv, two_point_start,
 };
 pub use difference::{DifferenceEstimate, DifferenceNoiseImm};
 pub use embed::Embedded;

@@ -5,12 +5,9 @@
 // A test binary: a panic on an unexpected error is the failure report.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-// The Gibbs reference smoother of the jump-Markov model (shared with `smoothing_exact.rs`).
-#[allow(dead_code)]
-mod gibbs;
-
 use argus_core_math::{Gaussian, Matrix, Vector, anees_interval};
 use argus_filters::{Kf, RtsTrack, SmoothError, two_point_cv2};
+use argus_imm::smooth::gibbs::{GibbsChain, GibbsProblem, pooled};
 use argus_imm::{
     Imm, ImmEstimate, ImmSmoothError, ImmTrack, MarkovMatrix, NoiseVariances, PairWeights,
     PlotConversion, UnbiasedConversion, unbiased_conversion,
@@ -399,7 +396,7 @@ fn imm_mode_sequence(s: &[argus_imm::ImmSmoothed<4, 3>], pi: &[[f64; 3]; 3]) -> 
     seq
 }
 
-/// The Gibbs reference smoother ([`gibbs`]) of seed 000's jump-Markov model — the paper
+/// The Gibbs smoother ([`argus_imm::smooth::gibbs`]) of seed 000's jump-Markov model — the paper
 /// IMM's three models, Markov matrix, Q, the true R on the unbiased converted plots (the
 /// same per-step measurement model the IMM updates with), the two-point start with μ₀
 /// uniform — over `runs` runs of campaign seed `seed`; two chains per run (one from the
@@ -435,20 +432,15 @@ fn gimpo_reference(
             meas.push((mm, z));
         }
         let smoothed = track.smooth().unwrap();
-        let problem = gibbs::Problem {
-            filters: imm.filters(),
-            pi,
-            mu0: [1.0 / 3.0; 3],
-            g0: g,
-            times: &times,
-            plots: &meas,
-        };
+        let problem = GibbsProblem::new(&imm, [1.0 / 3.0; 3], &g, &times, &meas[1..]).unwrap();
+        let init = imm_mode_sequence(&smoothed, &pi);
         let mut chains = [
-            gibbs::Chain::new(&problem, imm_mode_sequence(&smoothed, &pi), 1000 * run + 1),
-            gibbs::Chain::new(&problem, vec![0; times.len()], 1000 * run + 2),
+            GibbsChain::new(&problem, &init, 1000 * run + 1, block).unwrap(),
+            GibbsChain::new(&problem, &vec![0; times.len()], 1000 * run + 2, block).unwrap(),
         ];
+        let sweep = |c: &mut GibbsChain<'_, 4, 2, 3>, record| c.sweep(block, record).unwrap();
         for _ in 0..burn {
-            chains.iter_mut().for_each(|c| c.sweep(block, false));
+            chains.iter_mut().for_each(|c| sweep(c, false));
         }
         let truth_at: Vec<Vector<4>> = times
             .iter()
@@ -468,11 +460,12 @@ fn gimpo_reference(
         }
         for (ci, &target) in checkpoints.iter().enumerate() {
             while chains[0].sweeps() < target {
-                chains.iter_mut().for_each(|c| c.sweep(block, true));
+                chains.iter_mut().for_each(|c| sweep(c, true));
             }
-            let (pooled, _) = gibbs::pooled(&chains);
-            let (a, _) = gibbs::pooled(&chains[..1]);
-            let (b, _) = gibbs::pooled(&chains[1..]);
+            let states = |c: &[GibbsChain<'_, 4, 2, 3>]| -> Vec<Gaussian<4>> {
+                pooled(c).unwrap().iter().map(|e| e.state).collect()
+            };
+            let (pooled, a, b) = (states(&chains), states(&chains[..1]), states(&chains[1..]));
             per[ci].resize(times.len(), [0.0; 4]);
             for k in 0..times.len() {
                 let x = &truth_at[k];

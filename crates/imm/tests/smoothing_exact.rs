@@ -7,12 +7,9 @@
 // A test binary: a panic on an unexpected error is the failure report.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-// The Gibbs reference smoother (shared with `smoothing.rs`; not every item is used here).
-#[allow(dead_code)]
-mod gibbs;
-
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Kf, RtsStep, RtsTrack, SmoothingFilter, rts_smooth};
+use argus_imm::smooth::gibbs::{GibbsChain, GibbsProblem, pooled};
 use argus_imm::{Imm, ImmEstimate, ImmSmoothed, ImmTrack, MarkovMatrix, PairWeights};
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use argus_sensors::CartesianPosition;
@@ -327,12 +324,28 @@ fn gimpo_models() -> ([Kf<PlanarModel>; 3], [[f64; 3]; 3]) {
     )
 }
 
+/// A jump-Markov problem as the exact enumeration reads it: modes, Markov matrix, prior,
+/// start, times and `plots[k]` at `times[k]` (`plots[0]` unused).
+struct Enumerated<'a, const R: usize> {
+    filters: &'a [Kf<PlanarModel>; R],
+    pi: [[f64; R]; R],
+    mu0: [f64; R],
+    g0: Gaussian<4>,
+    times: &'a [f64],
+    plots: &'a [(Pos, Vector<2>)],
+}
+
+impl<const R: usize> Enumerated<'_, R> {
+    /// The library's Gibbs problem of the same model (the plots after the start).
+    fn gibbs(&self) -> GibbsProblem<4, 2, R> {
+        let imm = Imm::new(*self.filters, MarkovMatrix::new(self.pi).unwrap()).unwrap();
+        GibbsProblem::new(&imm, self.mu0, &self.g0, self.times, &self.plots[1..]).unwrap()
+    }
+}
+
 /// `ln p(m) + ln p(Z | m)` of one mode sequence by its own Kalman filter: the weight the
 /// exact enumeration gives the sequence.
-fn sequence_log_weight<const R: usize>(
-    p: &gibbs::Problem<'_, R, gibbs::Pos>,
-    seq: &[usize],
-) -> f64 {
+fn sequence_log_weight<const R: usize>(p: &Enumerated<'_, R>, seq: &[usize]) -> f64 {
     let mut lw = p.mu0[seq[0]].ln();
     let mut g = p.g0;
     for k in 1..seq.len() {
@@ -360,8 +373,8 @@ fn gibbs_conditionals_are_the_enumerations() {
     for (seed, sigma_cfg) in [(1, 50.0), (2, 500.0)] {
         let (times, _, plots) = scene(7, 5.0, 3, 3.0_f64.to_radians(), 50.0, seed);
         let meas = pos(sigma_cfg);
-        let plots: Vec<(gibbs::Pos, Vector<2>)> = plots.iter().map(|z| (meas, *z)).collect();
-        let p = gibbs::Problem {
+        let plots: Vec<(Pos, Vector<2>)> = plots.iter().map(|z| (meas, *z)).collect();
+        let p = Enumerated {
             filters: &filters,
             pi,
             mu0: [0.5, 0.3, 0.2],
@@ -369,6 +382,7 @@ fn gibbs_conditionals_are_the_enumerations() {
             times: &times,
             plots: &plots,
         };
+        let gp = p.gibbs();
         let mut tried = 0;
         while tried < 20 {
             let seq: Vec<usize> = (0..times.len())
@@ -379,7 +393,7 @@ fn gibbs_conditionals_are_the_enumerations() {
             }
             tried += 1;
             for k in 0..seq.len() {
-                let c = p.conditional(&seq, k);
+                let c = gp.conditional(&seq, k).unwrap();
                 let l: Vec<f64> = (0..3)
                     .map(|j| {
                         let mut s = seq.clone();
@@ -402,7 +416,7 @@ fn gibbs_conditionals_are_the_enumerations() {
             // Blocks of three modes drawn jointly: every path of the block against the
             // enumeration's weights of the 27 sequences that differ only there.
             for k in 1..seq.len() - 2 {
-                let c = p.block_conditional(&seq, k, 3);
+                let c = gp.block_conditional(&seq, k, 3).unwrap();
                 let l: Vec<(Vec<usize>, f64)> = (0..27)
                     .map(|code| {
                         let path = vec![code % 3, (code / 3) % 3, code / 9];
@@ -444,20 +458,23 @@ fn gibbs_distance_to_exact(sigma_cfg: f64, sweeps: usize) -> [f64; 2] {
         let (times, _, plots) = scene(9, 5.0, 4, 3.0_f64.to_radians(), 50.0, seed);
         let g0 = start(&plots[0]);
         let (ex, ex_mu) = exact_smoother(&filters, &pi, [0.5, 0.5], g0, &times, &plots, &meas);
-        let plots: Vec<(gibbs::Pos, Vector<2>)> = plots.iter().map(|z| (meas, *z)).collect();
-        let p = gibbs::Problem {
+        let plots: Vec<(Pos, Vector<2>)> = plots.iter().map(|z| (meas, *z)).collect();
+        let p = Enumerated {
             filters: &filters,
             pi,
             mu0: [0.5, 0.5],
             g0,
             times: &times,
             plots: &plots,
-        };
-        let mut chain = gibbs::Chain::new(&p, vec![0; times.len()], 100 + seed);
-        for s in 0..20 + sweeps {
-            chain.sweep(1, s >= 20);
         }
-        let (g, mu) = gibbs::pooled(std::slice::from_ref(&chain));
+        .gibbs();
+        let mut chain = GibbsChain::new(&p, &vec![0; times.len()], 100 + seed, 1).unwrap();
+        for s in 0..20 + sweeps {
+            chain.sweep(1, s >= 20).unwrap();
+        }
+        let est = pooled(std::slice::from_ref(&chain)).unwrap();
+        let g: Vec<Gaussian<4>> = est.iter().map(|e| e.state).collect();
+        let mu: Vec<[f64; 2]> = est.iter().map(|e| e.mode_probabilities).collect();
         for k in 0..times.len() {
             acc[0] += ex[k].mahalanobis_sq(g[k].mean());
             acc[1] += (mu[k][0] - ex_mu[k][0]).abs();
@@ -511,20 +528,25 @@ fn gibbs_blocks_converge_on_the_gimpo_model_set() {
             let (times, _, plots) = scene(7, 5.0, 3, 3.0_f64.to_radians(), 50.0, 40 + seed);
             let g0 = start(&plots[0]);
             let (ex, _) = exact_smoother(&filters, &pi, mu0, g0, &times, &plots, &meas);
-            let plots: Vec<(gibbs::Pos, Vector<2>)> = plots.iter().map(|z| (meas, *z)).collect();
-            let p = gibbs::Problem {
+            let plots: Vec<(Pos, Vector<2>)> = plots.iter().map(|z| (meas, *z)).collect();
+            let p = Enumerated {
                 filters: &filters,
                 pi,
                 mu0,
                 g0,
                 times: &times,
                 plots: &plots,
-            };
-            let mut chain = gibbs::Chain::new(&p, vec![0; times.len()], 200 + seed);
-            for s in 0..20 + sweeps {
-                chain.sweep(4, s >= 20);
             }
-            let (g, _) = gibbs::pooled(std::slice::from_ref(&chain));
+            .gibbs();
+            let mut chain = GibbsChain::new(&p, &vec![0; times.len()], 200 + seed, 4).unwrap();
+            for s in 0..20 + sweeps {
+                chain.sweep(4, s >= 20).unwrap();
+            }
+            let g: Vec<Gaussian<4>> = pooled(std::slice::from_ref(&chain))
+                .unwrap()
+                .iter()
+                .map(|e| e.state)
+                .collect();
             for k in 0..times.len() {
                 d[slot] += ex[k].mahalanobis_sq(g[k].mean());
                 count += 1.0;

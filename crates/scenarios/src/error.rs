@@ -172,6 +172,9 @@ pub enum ScenarioError {
     /// The IMM smoother refused a recorded track.
     #[error("imm smoothing: {0}")]
     ImmSmooth(#[from] argus_imm::ImmSmoothError),
+    /// The Gibbs smoother refused a problem or failed at a step.
+    #[error("gibbs smoothing: {0}")]
+    Gibbs(#[from] argus_imm::smooth::gibbs::GibbsError),
     /// Gating or data association rejected a value.
     #[error("association: {0}")]
     Association(#[from] argus_association::AssociationError),

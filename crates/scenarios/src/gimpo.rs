@@ -149,6 +149,27 @@ impl Scenario for Gimpo {
                 max: 1.0,
                 help: "difference estimator: forgetting factor per third difference",
             },
+            ParamSpec {
+                key: "gibbs_block",
+                default: 4.0,
+                min: 1.0,
+                max: 8.0,
+                help: "Gibbs smoother: consecutive modes drawn jointly (integer)",
+            },
+            ParamSpec {
+                key: "gibbs_burn_in",
+                default: 20.0,
+                min: 0.0,
+                max: 100_000.0,
+                help: "Gibbs smoother: sweeps discarded per run (integer)",
+            },
+            ParamSpec {
+                key: "gibbs_sweeps",
+                default: 200.0,
+                min: 1.0,
+                max: 100_000.0,
+                help: "Gibbs smoother: sweeps averaged per run (integer)",
+            },
         ]
     }
 
@@ -244,12 +265,12 @@ impl Campaign for Gimpo {
     fn one_run(
         &self,
         s: &Setup,
-        _seed: u64,
+        seed: u64,
         run: u64,
         rng: &mut argus_sim::ChaCha8Rng,
     ) -> Result<estimate::RunOut, ScenarioError> {
         let plots = estimate::simulate(&s.truth, &s.sensors, rng)?;
-        s.est.run(&s.traj, run, &plots)
+        s.est.run(&s.traj, seed, run, &plots)
     }
 
     /// Per-step sums and a few final ratios per run ([`sums::Sums`]): a merge of any

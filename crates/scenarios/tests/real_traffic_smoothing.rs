@@ -29,8 +29,10 @@ fn smoothed_tracks_and_nees_against_the_smoothed_truth() {
         assert!((0.3..0.9).contains(&ratio), "{c}: smooth_rms_ratio {ratio}");
     }
     for c in ["gnn_aircraft", "jpda_aircraft"] {
-        // The aircraft IMM's modes have unequal state sizes: not smoothed.
-        assert!(row(&format!("{c}_smooth_rms_ratio")).is_none(), "{c}");
+        // The aircraft-IMM smoother (argus_imm::aircraft_smooth). Measured 0.477 / 0.476
+        // (GNN / JPDA). Bounds as for the KF and the two-mode IMM.
+        let ratio = row(&format!("{c}_smooth_rms_ratio")).unwrap();
+        assert!((0.3..0.9).contains(&ratio), "{c}: smooth_rms_ratio {ratio}");
     }
     for c in [
         "gnn_kf",

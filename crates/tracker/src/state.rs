@@ -107,6 +107,14 @@ impl TrackState {
         }
     }
 
+    /// The aircraft IMM's mode-conditioned estimates and probabilities.
+    pub(crate) fn aircraft_estimate(&self) -> Option<&AircraftState> {
+        match self {
+            Self::Aircraft(a) => Some(a),
+            Self::Single | Self::Imm(_) | Self::Multi(_) => None,
+        }
+    }
+
     /// The multi-IMM's measurement-noise reference.
     pub(crate) fn noise_estimate(&self) -> Option<NoiseVariances> {
         match self {

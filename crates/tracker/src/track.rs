@@ -1,7 +1,7 @@
 //! Tracks, their ids and statuses.
 
 use argus_core_math::Gaussian;
-use argus_imm::{ImmEstimate, NoiseVariances};
+use argus_imm::{AircraftEstimate, ImmEstimate, NoiseVariances};
 
 use crate::state::{ModeProbabilities, TrackState};
 
@@ -161,6 +161,18 @@ impl Track {
     #[must_use]
     pub fn imm_estimate(&self) -> Option<&ImmEstimate<4, 2>> {
         self.state.imm_estimate()
+    }
+
+    /// The aircraft IMM's state at [`Track::time`] ([`crate::EstimatorConfig::Aircraft`]
+    /// only): the CV modes' estimates on `[x, vx, y, vy]`, the CT mode's on
+    /// `[x, vx, y, vy, ω]` and the mode probabilities (CV quiet, CV manoeuvre, CT) of which
+    /// [`Track::estimate`] is the moment match — after a plot the IMM's posterior (with
+    /// JPDA: the per-mode PDA moments), after a miss its mode predictions with `μ̄`. What
+    /// the aircraft-IMM smoother of the track's forward pass needs (`argus track
+    /// --smooth`); a borrow.
+    #[must_use]
+    pub fn aircraft_estimate(&self) -> Option<&AircraftEstimate<2, 3>> {
+        self.state.aircraft_estimate()
     }
 
     /// The aircraft IMM's turn-rate estimate and its standard deviation (rad/s,

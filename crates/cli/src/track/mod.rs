@@ -21,6 +21,7 @@ mod single;
 mod single_aircraft;
 mod single_imm;
 mod smooth;
+mod smooth_aircraft;
 mod source;
 mod spec;
 mod start;

@@ -34,12 +34,22 @@
 //! the last row's, as for the single-target IMM ([`super::smooth`]). The smoothed mode
 //! probabilities go to `mu_1s, mu_2s`.
 //!
+//! # The aircraft IMM (`aircraft-imm`, [`EstimatorConfig::Aircraft`])
+//! Each row keeps the track's aircraft-IMM state ([`Track::aircraft_estimate`]: the CV
+//! modes' `[x, vx, y, vy]`, the CT mode's `[x, vx, y, vy, ω]` and the three mode
+//! probabilities, after the plot or, after a miss, the mode predictions with `μ̄`), and
+//! the track is smoothed by `argus_imm`'s aircraft-IMM smoother
+//! ([`argus_imm::aircraft_smooth`], the single-target `aircraft-imm`'s, through the same
+//! [`AircraftRecorder`]), its record recomputed from the row before's modes with an IMM
+//! built from the configuration's tuning by [`argus_imm::AircraftTuning::build`] (as the
+//! tracker builds it). Exact in the same sense as the two-mode IMM: with GNN the record
+//! is the one the single-target run keeps over the same plots (tested to 1e-9,
+//! `tests/smooth_aircraft_tracks.rs`); with JPDA it smooths the recorded PDA moments.
+//! The smoothed mode probabilities go to `mu_1s, mu_2s, mu_3s`.
+//!
 //! # Not smoothed
-//! The multi-IMM (`multi-imm`) and the aircraft IMM (`aircraft-imm`) are refused with a
-//! typed error naming `estimator.kind`: the multi-IMM keeps a noise-hypothesis mixture
-//! the IMM smoother does not model, and the aircraft IMM's modes have unequal state sizes
-//! (CV 4, CT 5 with the turn rate) while `argus_imm`'s smoother needs one state size for
-//! every mode.
+//! The multi-IMM (`multi-imm`) is refused with a typed error naming `estimator.kind`: it
+//! keeps a noise-hypothesis mixture the IMM smoother does not model.
 //!
 //! Which rows: a smoothed track's rows from its first (the tentative ones included) to
 //! its last before deletion; a track's `deleted` row and every row of a track never
@@ -49,7 +59,9 @@ use std::collections::BTreeMap;
 
 use argus_core_math::Gaussian;
 use argus_filters::Kf;
-use argus_imm::{Imm, ImmEstimate, ImmSmoothed, MarkovMatrix, NoiseVariances};
+use argus_imm::{
+    AircraftEkf, AircraftEstimate, Imm, ImmEstimate, ImmSmoothed, MarkovMatrix, NoiseVariances,
+};
 use argus_motion_models::Cv2D;
 use argus_tracker::{
     DeletionReason, EstimatorConfig, ModeProbabilities, SensorId, Track, TrackStatus, TrackerConfig,
@@ -58,13 +70,14 @@ use argus_tracker::{
 use super::multi::{Files, reason_name, status_name};
 use super::rows::{Column, Point, TrackRows};
 use super::smooth::{self, Failure, ImmRecorder, Smoothing, rts_rows};
+use super::smooth_aircraft::AircraftRecorder;
 use crate::error::CliError;
 
 /// The tracker's two-mode CV IMM.
 type Imm2 = Imm<Kf<Cv2D>, 4, 2>;
 
 /// One row as the tracker gave it.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct Row {
     sensor: u32,
     track: u64,
@@ -77,6 +90,10 @@ struct Row {
     score: f64,
     /// The IMM state (IMM tracks only).
     imm: Option<ImmEstimate<4, 2>>,
+    /// The aircraft-IMM state (aircraft tracks only; boxed: 584 bytes).
+    aircraft: Option<Box<AircraftEstimate<2, 3>>>,
+    /// The aircraft IMM's turn rate and its σ (rad/s).
+    turn_rate: Option<(f64, f64)>,
 }
 
 /// The smoother of the tracks' estimator.
@@ -86,10 +103,13 @@ enum Smoother {
     Rts(Kf<Cv2D>),
     /// The IMM smoother, with the tracks' IMM.
     Imm(Imm2),
+    /// The aircraft-IMM smoother, with the tracks' aircraft IMM.
+    Aircraft(Box<AircraftEkf<2, 3>>),
 }
 
-/// One track's smoothed rows: the combined estimate, and the IMM's mode probabilities.
-type SmoothedRow = (Gaussian<4>, Option<[f64; 2]>);
+/// One track's smoothed rows: the combined estimate, and the IMM's mode probabilities
+/// (two for `imm`, three for `aircraft-imm`).
+type SmoothedRow = (Gaussian<4>, Option<Vec<f64>>);
 
 /// The rows of a run kept for smoothing, and the tracks' filter.
 #[derive(Debug)]
@@ -125,14 +145,15 @@ impl Recorded {
                 sigma_a_high,
                 p_stay,
             } => Smoother::Imm(tracker_imm(sigma_a_low, sigma_a_high, p_stay)?),
+            EstimatorConfig::Aircraft { tuning } => Smoother::Aircraft(Box::new(tuning.build()?)),
             _ => {
                 return Err(CliError::input(
                     files.config,
                     None,
                     Some("estimator.kind"),
                     "--smooth / --smooth-lag with [tracker]: the multi-IMM's noise \
-                     hypotheses and the aircraft IMM's modes of unequal state sizes have no \
-                     smoother; the tracker's kinds that smooth are kf-converted, ekf and imm",
+                     hypotheses have no smoother; the tracker's kinds that smooth are \
+                     kf-converted, ekf, imm and aircraft-imm",
                 ));
             }
         };
@@ -143,11 +164,12 @@ impl Recorded {
     }
 
     /// The smoothed columns: `xs, vxs, ys, vys, sigma_xs, sigma_ys`, and `mu_1s, mu_2s`
-    /// for the IMM.
+    /// for the IMM (`mu_1s … mu_3s` for the aircraft IMM).
     pub(super) fn columns(&self) -> Vec<Column> {
         Column::smoothed_tracker(match self.smoother {
             Smoother::Rts(_) => 0,
             Smoother::Imm(_) => 2,
+            Smoother::Aircraft(_) => 3,
         })
     }
 
@@ -164,6 +186,8 @@ impl Recorded {
             noise: track.noise_estimate(),
             score: track.score(),
             imm: track.imm_estimate().copied(),
+            aircraft: track.aircraft_estimate().map(|a| Box::new(*a)),
+            turn_rate: track.turn_rate(),
         });
     }
 
@@ -206,6 +230,7 @@ impl Recorded {
                         .map(|s| s.into_iter().map(|g| (g, None)).collect::<Vec<_>>())
                 }
                 Smoother::Imm(imm) => imm_rows(imm, &rows, &live, how),
+                Smoother::Aircraft(imm) => aircraft_rows(imm, &rows, &live, how),
             }
             .map_err(|f| f.into_cli(id))?;
             for (&i, g) in live.iter().zip(s) {
@@ -219,9 +244,10 @@ impl Recorded {
                 .of_track(r.sensor, r.track, status_name(r.status), reason)
                 .modes(r.modes.as_ref().map(|m| m.as_slice()))
                 .noise(r.noise)
+                .turn_rate(r.turn_rate)
                 .score(r.score)
                 .smoothed(s.as_ref().map(|s| &s.0))
-                .smoothed_modes(s.as_ref().and_then(|s| s.1.as_ref()).map(|m| m.as_slice()));
+                .smoothed_modes(s.as_ref().and_then(|s| s.1.as_deref()));
             out.push(&p);
         }
         Ok(count)
@@ -256,7 +282,45 @@ fn imm_rows(
         .zip(&times)
         .map(|(&k, &t)| {
             s.get(k)
-                .map(|s| (s.combined, Some(s.mode_probabilities)))
+                .map(|s| (s.combined, Some(s.mode_probabilities.to_vec())))
+                .ok_or_else(|| Failure::new(k, t, "no smoothed step".to_owned()))
+        })
+        .collect()
+}
+
+/// The aircraft-IMM smoothing of one track's rows `live` (indices into `rows`, in time
+/// order): one smoothed row per row (rows of one time share their step's).
+///
+/// # Errors
+/// [`Failure`] at the step whose row has no aircraft-IMM state, whose time goes
+/// backwards, or whose prediction or backward step fails.
+fn aircraft_rows(
+    imm: &AircraftEkf<2, 3>,
+    rows: &[Row],
+    live: &[usize],
+    how: Smoothing,
+) -> Result<Vec<SmoothedRow>, Failure> {
+    let mut rec = AircraftRecorder::new();
+    let times: Vec<f64> = live.iter().map(|&i| rows[i].time).collect();
+    let row_step = smooth::steps(&times).row_step;
+    for (k, &i) in live.iter().enumerate() {
+        let r = &rows[i];
+        let est = r.aircraft.as_deref().ok_or_else(|| {
+            Failure::new(
+                row_step[k],
+                r.time,
+                "the row has no aircraft-IMM state".to_owned(),
+            )
+        })?;
+        rec.record(imm, r.time, *est)?;
+    }
+    let s = rec.smooth(imm, how)?;
+    row_step
+        .iter()
+        .zip(&times)
+        .map(|(&k, &t)| {
+            s.get(k)
+                .map(|s| (s.combined, Some(s.mode_probabilities.to_vec())))
                 .ok_or_else(|| Failure::new(k, t, "no smoothed step".to_owned()))
         })
         .collect()

@@ -74,18 +74,11 @@ pub(super) fn run(
             None,
             Some("estimator.kind"),
             "--smooth / --smooth-lag: the multi-IMM is not smoothed (no smoother for its noise \
-             hypotheses); the kinds that smooth are kf-converted, ekf and imm",
+             hypotheses); the kinds that smooth are kf-converted, ekf, imm and aircraft-imm",
         )),
         (Estimator::MultiImm(spec, multi), false) => {
             single_imm::multi_imm(ctx, spec, *multi, plots)
         }
-        (Estimator::Aircraft(_), _) if ctx.smoothing.is_some() => Err(CliError::input(
-            ctx.config,
-            None,
-            Some("estimator.kind"),
-            "--smooth / --smooth-lag: the aircraft IMM is not smoothed (no smoother across its \
-             unequal state sizes); the kinds that smooth are kf-converted, ekf and imm",
-        )),
         (Estimator::Aircraft(tuning), false) => single_aircraft::run(ctx, tuning, plots),
         (Estimator::Imm(_) | Estimator::MultiImm(..) | Estimator::Aircraft(_), true) => {
             Err(CliError::input(

@@ -4,13 +4,17 @@
 //! (`AircraftTuning::start`: the unbiased conversion of the first two plots, then
 //! differencing, the CT mode with its turn-rate prior). One row per plot from the second:
 //! the combined state, its variances, the three mode probabilities and the CT mode's turn
-//! rate.
+//! rate. With `--smooth` / `--smooth-lag` the rows also get the aircraft-IMM smoother's
+//! combined state, its variances and the smoothed mode probabilities
+//! ([`super::smooth_aircraft`]).
 
 use argus_core_math::Vector;
-use argus_imm::{AircraftEstimate, AircraftRadar, AircraftTuning};
+use argus_imm::{AircraftEstimate, AircraftRadar, AircraftSmoothed, AircraftTuning};
 use argus_sensors::{Measurement, RadarNoise};
 
 use super::rows::{Column, Point, TrackRows};
+use super::smooth::{self, Failure};
+use super::smooth_aircraft::AircraftRecorder;
 use super::spec::Sensor;
 use super::start::{Ctx, too_few};
 use crate::error::CliError;
@@ -65,12 +69,16 @@ pub(super) fn run(
                 format!("two-point initialisation: {e}"),
             )
         })?;
-    let mut columns = Column::single(2, 3, false);
-    columns.extend(Column::TURN_RATE);
-    let mut rows = TrackRows::with_reference(columns, ctx.reference);
     let mut t = p2.time();
-    push(&mut rows, t, &est).map_err(ctx.imm_error(p2))?;
-    for p in plots.get(2..).unwrap_or(&[]) {
+    // With smoothing, the forward pass is recorded (one step per time).
+    let mut record = ctx.smoothing.map(|_| AircraftRecorder::new());
+    let fail = |f: Failure| f.into_cli(1);
+    let mut out: Vec<(f64, AircraftEstimate<2, 3>, usize)> = Vec::with_capacity(plots.len());
+    if let Some(r) = &mut record {
+        r.record(&imm, t, est).map_err(fail)?;
+    }
+    out.push((t, est, 1));
+    for (i, p) in plots.iter().enumerate().skip(2) {
         let z = plot(p)?;
         let dt = p.time() - t;
         let upd = if dt == 0.0 {
@@ -80,7 +88,30 @@ pub(super) fn run(
         };
         est = upd.map_err(ctx.imm_error(p))?.estimate;
         t = p.time();
-        push(&mut rows, t, &est).map_err(ctx.imm_error(p))?;
+        if let Some(r) = &mut record {
+            r.record(&imm, t, est).map_err(fail)?;
+        }
+        out.push((t, est, i));
+    }
+    let smoothed = match (record, ctx.smoothing) {
+        (Some(r), Some(how)) => Some(r.smooth(&imm, how).map_err(fail)?),
+        _ => None,
+    };
+    let mut columns = Column::single(2, 3, false);
+    columns.extend(Column::TURN_RATE);
+    if smoothed.is_some() {
+        columns.extend(Column::smoothed_single(2, 3));
+    }
+    let mut rows = TrackRows::with_reference(columns, ctx.reference);
+    let times: Vec<f64> = out.iter().map(|o| o.0).collect();
+    let row_step = smooth::steps(&times).row_step;
+    for (k, (t, est, i)) in out.iter().enumerate() {
+        let s = smoothed
+            .as_ref()
+            .and_then(|s| row_step.get(k).and_then(|&j| s.get(j)));
+        // The plot of the row (for an error's line).
+        let p = &plots[*i];
+        push(&mut rows, *t, est, s).map_err(ctx.imm_error(p))?;
     }
     Ok(rows)
 }
@@ -100,18 +131,22 @@ fn radar(ctx: &Ctx<'_>, s: &Sensor) -> Result<AircraftRadar, CliError> {
     AircraftRadar::new([s.position[0], s.position[1]], noise).map_err(|e| bad(e.to_string()))
 }
 
-/// One row: the combined estimate, the mode probabilities, the turn rate.
+/// One row: the combined estimate, the mode probabilities, the turn rate; with
+/// smoothing, the step's smoothed combined estimate and mode probabilities.
 fn push(
     rows: &mut TrackRows,
     t: f64,
     est: &AircraftEstimate<2, 3>,
+    smoothed: Option<&AircraftSmoothed<2, 3>>,
 ) -> Result<(), argus_imm::ImmError> {
     let c = est.combined()?;
     let mu = est.mode_probabilities();
     rows.push(
         &Point::new(t, &c)
             .modes(Some(&mu))
-            .turn_rate(Some(est.turn_rate())),
+            .turn_rate(Some(est.turn_rate()))
+            .smoothed(smoothed.map(|s| &s.combined))
+            .smoothed_modes(smoothed.map(|s| s.mode_probabilities.as_slice())),
     );
     Ok(())
 }

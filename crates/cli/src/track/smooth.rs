@@ -118,7 +118,7 @@ fn window_end(times: &[f64], j: usize, how: Smoothing) -> usize {
 
 /// Per step, the smoothed value: `smooth(j, k)` smooths the window of steps `j … k` and
 /// returns one value per step of it.
-fn by_windows<T: Copy>(
+pub(super) fn by_windows<T: Copy>(
     times: &[f64],
     how: Smoothing,
     smooth: impl Fn(usize, usize) -> Result<Vec<T>, Failure>,
@@ -212,7 +212,7 @@ pub(super) fn rts_rows<const N: usize, F: SmoothingFilter<N>>(
 }
 
 /// An IMM error of the window starting at step `base`, at its absolute step.
-fn imm_failure(e: &ImmSmoothError, base: usize, times: &[f64]) -> Failure {
+pub(super) fn imm_failure(e: &ImmSmoothError, base: usize, times: &[f64]) -> Failure {
     let (step, message) = match e {
         ImmSmoothError::Sequence(s) => return sequence_failure(s, base, times),
         ImmSmoothError::ForwardFailed { step, source } => {

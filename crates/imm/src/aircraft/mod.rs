@@ -86,6 +86,7 @@ mod estimate;
 mod estimator;
 mod mixing;
 mod radar;
+mod smooth;
 mod start;
 mod tuning;
 
@@ -96,5 +97,9 @@ pub use estimate::AircraftEstimate;
 pub use estimator::{AircraftImm, AircraftPrediction, AircraftUpdate};
 pub use mixing::Augmentation;
 pub use radar::AircraftRadar;
+pub use smooth::{
+    AircraftSmoothed, AircraftStep, AircraftTrack, AircraftTransition, PairTransition,
+    aircraft_smooth,
+};
 pub use start::{start_from_cv, two_point_start};
 pub use tuning::{AircraftEkf, AircraftTuning};

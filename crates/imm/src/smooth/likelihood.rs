@@ -15,7 +15,7 @@ use argus_core_math::{Gaussian, MathError, Matrix, SpdFactor, Vector};
 /// the prediction; a collapsed mixture can make `Pʲₖ₊₁|ₙ` exceed `P̄ʲ` in a direction),
 /// linear term `η`.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct BackwardLikelihood<const N: usize> {
+pub(crate) struct BackwardLikelihood<const N: usize> {
     center: Vector<N>,
     info: Matrix<N, N>,
     linear: Vector<N>,
@@ -26,7 +26,7 @@ impl<const N: usize> BackwardLikelihood<N> {
     ///
     /// # Errors
     /// [`MathError::NotPositiveDefinite`] if a covariance cannot be factored.
-    pub(super) fn new(smoothed: &Gaussian<N>, predicted: &Gaussian<N>) -> Result<Self, MathError> {
+    pub(crate) fn new(smoothed: &Gaussian<N>, predicted: &Gaussian<N>) -> Result<Self, MathError> {
         let ps = SpdFactor::new_symmetric(smoothed.cov(), "smoothed covariance")?.inverse();
         let pp = SpdFactor::new_symmetric(predicted.cov(), "predicted covariance")?;
         let raw = ps - pp.inverse();
@@ -48,7 +48,7 @@ impl<const N: usize> BackwardLikelihood<N> {
     ///
     /// # Errors
     /// [`MathError::NotPositiveDefinite`] if `P` or `J` cannot be factored.
-    pub(super) fn posterior(&self, prior: &Gaussian<N>) -> Result<(Gaussian<N>, f64), MathError> {
+    pub(crate) fn posterior(&self, prior: &Gaussian<N>) -> Result<(Gaussian<N>, f64), MathError> {
         let pf = SpdFactor::new_symmetric(prior.cov(), "pair prediction covariance")?;
         let d = prior.mean() - self.center;
         let pinv_d = pf.solve_vector(&d);

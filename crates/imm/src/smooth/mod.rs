@@ -125,9 +125,12 @@
 
 mod backward;
 mod error;
+#[cfg(feature = "gibbs")]
+pub mod gibbs;
 mod likelihood;
 mod track;
 
 pub use backward::{ImmSmoothed, PairWeights, imm_smooth};
 pub use error::ImmSmoothError;
+pub(crate) use likelihood::BackwardLikelihood;
 pub use track::{ImmStep, ImmTrack, ImmTransition};

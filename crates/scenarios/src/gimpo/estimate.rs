@@ -2,8 +2,9 @@
 //! estimator, and the variational, evidence and difference estimators of `argus-imm`,
 //! each from every start factor.
 
-use argus_core_math::Vector;
+use argus_core_math::{Gaussian, Vector};
 use argus_filters::{Kf, two_point_cv2};
+use argus_imm::smooth::gibbs::{GibbsConfig, GibbsProblem, gibbs_smooth};
 use argus_imm::{
     DifferenceEstimate, DifferenceNoiseImm, EvidenceEstimate, EvidenceNoiseImm, Imm, ImmEstimate,
     ImmTrack, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlotConversion,
@@ -44,6 +45,13 @@ pub(crate) struct RunOut {
     /// Squared position error of the fixed-interval smoothed IMM with the true R
     /// (argus_imm's forward–backward smoother, default pair weights), per step.
     pub(super) smooth_se: Vec<f64>,
+    /// Its NEES of `[x, vx, y, vy]` against the truth, per step.
+    pub(super) smooth_nees: Vec<f64>,
+    /// Squared position error of the same IMM's plots smoothed by the Gibbs smoother
+    /// (the jump-Markov model's posterior mean), per step.
+    pub(super) gibbs_se: Vec<f64>,
+    /// Its NEES against the truth, per step.
+    pub(super) gibbs_nees: Vec<f64>,
     /// Paper's multi-IMM: squared error and variance ratio, per start.
     pub(super) multi_se: [Vec<f64>; 5],
     pub(super) multi_ratio: [Vec<f64>; 5],
@@ -94,14 +102,31 @@ struct RunInput<'a> {
     rest: &'a [(f64, PolarMeasurement)],
 }
 
+/// The modes' prior at the start: equally likely.
+const MU0: [f64; 3] = [1.0 / 3.0; 3];
+
+/// Distinguishes the Gibbs smoother's generator from the plots' (`run_rng(seed, run)`).
+const GIBBS_SALT: u64 = 0x6769_6262_735f_7331;
+
+/// The Gibbs chain's seed of run `run` in a campaign of seed `seed`: a function of the
+/// two only, so that a run smooths the same whatever the threads or shards.
+fn gibbs_seed(seed: u64, run: u64) -> u64 {
+    use rand::Rng;
+    argus_sim::run_rng(seed ^ GIBBS_SALT, run).next_u64()
+}
+
 impl RunInput<'_> {
-    /// The two-point start under the noise variances `var`, modes equally likely.
-    fn init(&self, var: &NoiseVariances) -> Result<ImmEstimate<4, 3>, ScenarioError> {
+    /// The two-point start (at the second plot) under the noise variances `var`.
+    fn start(&self, var: &NoiseVariances) -> Result<Gaussian<4>, ScenarioError> {
         let ((t1, p1), (t2, p2)) = (self.first, self.second);
         let (z1, r1) = argus_imm::unbiased_conversion(p1, var)?;
         let (z2, r2) = argus_imm::unbiased_conversion(p2, var)?;
-        let g = two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1)?;
-        Ok(ImmEstimate::from_common(g, [1.0 / 3.0; 3])?)
+        Ok(two_point_cv2(&z1, &r1, &z2, &r2, t2 - t1)?)
+    }
+
+    /// The two-point start under the noise variances `var`, modes equally likely.
+    fn init(&self, var: &NoiseVariances) -> Result<ImmEstimate<4, 3>, ScenarioError> {
+        Ok(ImmEstimate::from_common(self.start(var)?, MU0)?)
     }
 
     /// The true `[x, vx, y, vy]` at `t`.
@@ -119,6 +144,8 @@ pub(crate) struct Estimators {
     ev: EvidenceNoiseImm<Kf<PlanarModel>, 4, 3>,
     df: DifferenceNoiseImm<Kf<PlanarModel>, 4, 3>,
     conv: UnbiasedConversion<4>,
+    /// The Gibbs smoother's block, burn-in and recorded sweeps (the seed is the run's).
+    gibbs: GibbsConfig,
     /// The multi-IMM's clip of the reference change per step.
     pub(super) clip: Option<f64>,
 }
@@ -157,6 +184,20 @@ impl Estimators {
             ev
         };
         let df = DifferenceNoiseImm::new(imm.clone(), p.get("df_rho")?)?;
+        let count = |key: &str| -> Result<usize, ScenarioError> {
+            // Declared with integer bounds ≥ 0: the rounded value is the count.
+            Ok(p.get(key)?.round() as usize)
+        };
+        let gibbs = GibbsConfig {
+            block: count("gibbs_block")?,
+            burn_in: count("gibbs_burn_in")?,
+            sweeps: count("gibbs_sweeps")?,
+            seed: 0,
+        };
+        gibbs.validate(3).map_err(|e| ScenarioError::Degenerate {
+            scenario: "gimpo",
+            message: e.to_string(),
+        })?;
         Ok(Self {
             true_var,
             imm,
@@ -165,17 +206,20 @@ impl Estimators {
             ev,
             df,
             conv: UnbiasedConversion::<4>::new(0, 2)?,
+            gibbs,
             clip,
         })
     }
 
-    /// Every estimator from every start over one run's `plots` of the trajectory `traj`.
+    /// Every estimator from every start over one run's `plots` of the trajectory `traj`
+    /// (run `run` of a campaign of seed `seed`).
     ///
     /// # Errors
     /// [`ScenarioError::Degenerate`] for fewer than two plots, else the estimators' errors.
     pub(super) fn run(
         &self,
         traj: &Trajectory,
+        seed: u64,
         run: u64,
         plots: &[(f64, PolarMeasurement)],
     ) -> Result<RunOut, ScenarioError> {
@@ -196,6 +240,9 @@ impl Estimators {
         for (i, f) in STARTS.iter().enumerate() {
             let var0 = NoiseVariances::new(self.true_var.range() * f, self.true_var.azimuth() * f)?;
             self.fixed(&inp, i, var0, &mut out)?;
+            if i == 2 {
+                self.smoothed(&inp, var0, seed, run, &mut out)?;
+            }
             self.multi(&inp, i, var0, run, &mut out)?;
             self.variational(&inp, i, var0, &mut out)?;
             self.evidence(&inp, i, var0, &mut out)?;
@@ -224,31 +271,58 @@ impl Estimators {
                 out.mu.push(est.mode_probabilities());
             }
         }
-        if i == 2 {
-            self.smoothed(inp, var0, out)?;
-        }
         Ok(())
     }
 
     /// The IMM with the true R recorded and smoothed over the whole run (issue 19): the
-    /// same forward steps as [`Self::fixed`], then the fixed-interval backward pass.
+    /// same forward steps as [`Self::fixed`], then the IMM's fixed-interval backward pass,
+    /// and the same plots smoothed by the Gibbs smoother of the IMM's jump-Markov model
+    /// (its chain started from the IMM smoother's most probable modes, seeded from the
+    /// run).
     fn smoothed(
         &self,
         inp: &RunInput<'_>,
         var0: NoiseVariances,
+        seed: u64,
+        run: u64,
         out: &mut RunOut,
     ) -> Result<(), ScenarioError> {
-        let mut track = ImmTrack::new(*self.imm.markov(), inp.t2, inp.init(&var0)?)?;
+        let start = inp.start(&var0)?;
+        let mut track = ImmTrack::new(
+            *self.imm.markov(),
+            inp.t2,
+            ImmEstimate::from_common(start, MU0)?,
+        )?;
         track.reserve(inp.rest.len());
+        let mut times = Vec::with_capacity(inp.rest.len() + 1);
+        times.push(inp.t2);
+        let mut meas = Vec::with_capacity(inp.rest.len());
         for (t, pl) in inp.rest {
             let (m, z) = self.conv.convert(pl, &var0)?;
             track.step(&self.imm, *t, &m, &z)?;
+            times.push(*t);
+            meas.push((m, z));
         }
         let smoothed = track.smooth()?;
+        let truth = times
+            .iter()
+            .map(|t| inp.truth_pos(*t))
+            .collect::<Result<Vec<_>, _>>()?;
         // The first recorded step is the start (at the second plot): skip it, as fixed_se does.
-        for (s, st) in smoothed.iter().zip(track.steps()).skip(1) {
-            out.smooth_se
-                .push(se(s.combined.mean(), &inp.truth_pos(st.time())?));
+        for (s, tr) in smoothed.iter().zip(&truth).skip(1) {
+            out.smooth_se.push(se(s.combined.mean(), tr));
+            out.smooth_nees.push(s.combined.mahalanobis_sq(tr));
+        }
+        let problem = GibbsProblem::new(&self.imm, MU0, &start, &times, &meas)?;
+        let init = problem.most_probable_sequence(smoothed.iter().map(|s| s.mode_probabilities))?;
+        let config = GibbsConfig {
+            seed: gibbs_seed(seed, run),
+            ..self.gibbs
+        };
+        let posterior = gibbs_smooth(&problem, &config, Some(&init))?;
+        for (s, tr) in posterior.iter().zip(&truth).skip(1) {
+            out.gibbs_se.push(se(s.state.mean(), tr));
+            out.gibbs_nees.push(s.state.mahalanobis_sq(tr));
         }
         Ok(())
     }

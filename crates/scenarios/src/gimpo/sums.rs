@@ -26,7 +26,12 @@ pub(crate) struct Sums {
     /// Runs added so far.
     pub(super) count: usize,
     pub(super) tail_fixed: [Tail; N],
+    /// The IMM smoother's and the Gibbs smoother's squared errors over the RMS window.
     pub(super) tail_smooth: Tail,
+    pub(super) tail_gibbs: Tail,
+    /// Their NEES over every step after the start (the ANEES window).
+    pub(super) nees_smooth: Tail,
+    pub(super) nees_gibbs: Tail,
     pub(super) tail_multi: [Tail; N],
     pub(super) tail_vb: [Tail; N],
     pub(super) tail_ev: [Tail; N],
@@ -127,6 +132,9 @@ impl Sums {
             count: 0,
             tail_fixed: [(0.0, 0.0); N],
             tail_smooth: (0.0, 0.0),
+            tail_gibbs: (0.0, 0.0),
+            nees_smooth: (0.0, 0.0),
+            nees_gibbs: (0.0, 0.0),
             tail_multi: [(0.0, 0.0); N],
             tail_vb: [(0.0, 0.0); N],
             tail_ev: [(0.0, 0.0); N],
@@ -169,6 +177,9 @@ impl Sums {
             finals(&mut self.last_df[i], &r.df_ratio[i]);
         }
         tail(&mut self.tail_smooth, &r.smooth_se, f);
+        tail(&mut self.tail_gibbs, &r.gibbs_se, f);
+        tail(&mut self.nees_smooth, &r.smooth_nees, 0);
+        tail(&mut self.nees_gibbs, &r.gibbs_nees, 0);
         for (m, v) in self.step_mu.iter_mut().zip(&r.mu) {
             for (a, b) in m.iter_mut().zip(v) {
                 *a += b / n_runs;
@@ -202,7 +213,12 @@ impl Sums {
 
     /// RMS of a tail sum.
     pub(super) fn rms(t: Tail) -> f64 {
-        (t.0 / t.1.max(1.0)).sqrt()
+        Self::mean(t).sqrt()
+    }
+
+    /// Mean of a tail sum.
+    pub(super) fn mean(t: Tail) -> f64 {
+        t.0 / t.1.max(1.0)
     }
 }
 
@@ -215,7 +231,7 @@ impl Retained for Sums {
         let pairs = |a: &[[Vec<f64>; 2]; N]| lens(a.iter().flatten());
         Footprint {
             fixed: self.times.len()
-                + 2 * (1 + 5 * N)
+                + 2 * (4 + 5 * N)
                 + lens(&self.step_fixed)
                 + lens(&self.step_multi)
                 + pairs(&self.step_vb)

@@ -197,7 +197,7 @@ pub(super) fn reduce(s: &Setup, sums: &RealSums) -> Result<Report, ScenarioError
             "-",
             "diagnostic",
         );
-        // Issue 19: the same tracks smoothed (KF and two-mode IMM trackers; not the aircraft IMM).
+        // Issue 19: the same tracks smoothed (KF, two-mode IMM and aircraft-IMM trackers).
         if let (Some(sm), Some(f)) = (opt(8), opt(3)) {
             rows.push(
                 Row::new(

@@ -12,7 +12,8 @@ use serde::{Deserialize, Serialize};
 
 use super::radar::{self, Radar};
 use super::smooth::{
-    SmoothedTruth, nees_against, smoothed_imm_track, smoothed_track, smoothed_truth, tracker_imm,
+    SmoothedTruth, nees_against, smoothed_aircraft_track, smoothed_imm_track, smoothed_track,
+    smoothed_truth, tracker_imm,
 };
 use super::truth::{self, Path};
 use crate::error::{ParamProblem, ScenarioError};
@@ -230,10 +231,12 @@ impl Setup {
             let mut histories = Vec::with_capacity(records.len());
             let mut estimates = Vec::with_capacity(records.len());
             let mut imm_states = Vec::with_capacity(records.len());
+            let mut aircraft_states = Vec::with_capacity(records.len());
             for r in records {
                 histories.push(r.history);
                 estimates.push(r.estimates);
                 imm_states.push(r.imm);
+                aircraft_states.push(r.aircraft);
             }
             if let Ok(path) = std::env::var("ARGUS_DEBUG_TRACKS") {
                 let mut t = String::from("t,track,status,x,vx,y,vy\n");
@@ -293,6 +296,16 @@ impl Setup {
                             .iter()
                             .zip(&imm_states)
                             .map(|(h, e)| smoothed_imm_track(&imm, h, e))
+                            .collect::<Result<Vec<_>, _>>()?,
+                    )
+                }
+                EstimatorConfig::Aircraft { tuning } => {
+                    let imm = tuning.build()?;
+                    Some(
+                        histories
+                            .iter()
+                            .zip(&aircraft_states)
+                            .map(|(h, e)| smoothed_aircraft_track(&imm, h, e))
                             .collect::<Result<Vec<_>, _>>()?,
                     )
                 }
@@ -460,8 +473,15 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
 /// Runs `config` over `plots` (fed a `chunk` of seconds at a time, as a stream) and
 /// returns every track's rows: its state each time it was updated or missed, with each
 /// row's estimate (mean and covariance) for smoothing and the NEES.
-/// A row's combined estimate and, for the two-mode IMM, the track's IMM state.
-type RowEstimate = (argus_core_math::Gaussian<4>, Option<ImmEstimate<4, 2>>);
+/// A row's combined estimate and, for the two-mode IMM, the track's IMM state; for the
+/// aircraft IMM its state (boxed: 584 bytes).
+type RowEstimate = (
+    argus_core_math::Gaussian<4>,
+    (Option<ImmEstimate<4, 2>>, Option<Box<AircraftState>>),
+);
+
+/// The aircraft IMM's state of a track.
+pub(crate) type AircraftState = argus_imm::AircraftEstimate<2, 3>;
 
 /// One track's rows as the tracker gave them: its history, its combined estimate per row
 /// and, for the two-mode IMM ([`EstimatorConfig::ImmCv2`]), its mode-conditioned state
@@ -470,6 +490,9 @@ pub(crate) struct TrackRecord {
     pub(crate) history: TrackHistory,
     pub(crate) estimates: Vec<argus_core_math::Gaussian<4>>,
     pub(crate) imm: Vec<Option<ImmEstimate<4, 2>>>,
+    /// For the aircraft IMM ([`EstimatorConfig::Aircraft`]), its state per row
+    /// ([`argus_tracker::Track::aircraft_estimate`]; `None` for the other estimators).
+    pub(crate) aircraft: Vec<Option<Box<AircraftState>>>,
 }
 
 pub(crate) fn track_with_estimates(
@@ -499,7 +522,13 @@ pub(crate) fn track_with_estimates(
                     y: x[2],
                     vy: x[3],
                 },
-                (*tr.estimate(), tr.imm_estimate().copied()),
+                (
+                    *tr.estimate(),
+                    (
+                        tr.imm_estimate().copied(),
+                        tr.aircraft_estimate().map(|a| Box::new(*a)),
+                    ),
+                ),
             ));
         }
         tracker.take_deleted();
@@ -522,12 +551,14 @@ pub(crate) fn track_with_estimates(
         .filter(|(_, r)| !r.is_empty())
         .map(|(id, r)| {
             let (rows, estimates): (Vec<TrackRow>, Vec<RowEstimate>) = r.into_iter().unzip();
-            let (estimates, imm) = estimates.into_iter().unzip();
+            let (estimates, states): (Vec<_>, Vec<_>) = estimates.into_iter().unzip();
+            let (imm, aircraft) = states.into_iter().unzip();
             let h = TrackHistory::new(id.to_string(), rows).map_err(ScenarioError::from)?;
             Ok(TrackRecord {
                 history: h,
                 estimates,
                 imm,
+                aircraft,
             })
         })
         .collect()

@@ -17,8 +17,11 @@
 //! --smooth` does (`crates/cli/src/track/multi_smooth.rs`). This holds because a track
 //! is recorded after every sector and a rotating radar updates it at most once per
 //! revolution (a sector is one revolution's eighth), so no forward step falls between two
-//! rows. The aircraft IMM (`*_aircraft`) is not smoothed: its modes have unequal state
-//! sizes (CV 4, CT 5), and the IMM smoother needs one (its rows are `None`).
+//! rows. The aircraft-IMM tracks (`*_aircraft`) are smoothed the same way by `argus_imm`'s
+//! aircraft-IMM smoother over their recorded states
+//! ([`argus_tracker::Track::aircraft_estimate`] per row; the record recomputed from the
+//! row before's modes by the IMM of the tuning, `AircraftTuning::build`, as the tracker
+//! builds it), as `argus track --smooth` does.
 //!
 //! **Smoothed truth.** The ADS-B positions jitter (docs/real-traffic.md: a 1-s sample's
 //! distance from the midpoint of its neighbours has median 11.5 m, 90th percentile 52 m;
@@ -31,7 +34,9 @@
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Kf, RtsStep, SmoothingFilter, rts_smooth};
-use argus_imm::{Imm, ImmEstimate, ImmTrack, MarkovMatrix};
+use argus_imm::{
+    AircraftEkf, AircraftEstimate, AircraftTrack, Imm, ImmEstimate, ImmTrack, MarkovMatrix,
+};
 use argus_motion_models::Cv2D;
 use argus_score::{TrackHistory, TrackRow, TruthPath};
 use argus_sensors::CartesianPosition;
@@ -245,6 +250,53 @@ pub(crate) fn smoothed_imm_track(
                 let mut t = ImmTrack::new(*imm.markov(), r.t, est).map_err(|e| fail(&e))?;
                 t.reserve(rows.len());
                 track = Some(t);
+            }
+            Some(t) => {
+                let last = t.steps()[t.steps().len() - 1].time();
+                if r.t > last {
+                    t.push(imm, r.t, est).map_err(|e| fail(&e))?;
+                }
+            }
+        }
+        step_of.push(track.as_ref().map_or(0, |t| t.steps().len() - 1));
+    }
+    let Some(track) = track else {
+        return TrackHistory::new(history.name(), Vec::new()).map_err(ScenarioError::from);
+    };
+    let smoothed = track.smooth().map_err(|e| fail(&e))?;
+    with_smoothed_states(history, &step_of, |k| smoothed[k].combined.mean())
+}
+
+/// An aircraft-IMM track's rows smoothed by `argus_imm`'s aircraft-IMM smoother over its
+/// recorded states `states` (module docs), as [`smoothed_imm_track`] does for the
+/// two-mode IMM.
+///
+/// # Errors
+/// [`ScenarioError::Degenerate`] naming the track if a row has no aircraft-IMM state or a
+/// step fails.
+pub(crate) fn smoothed_aircraft_track(
+    imm: &AircraftEkf<2, 3>,
+    history: &TrackHistory,
+    states: &[Option<Box<AircraftEstimate<2, 3>>>],
+) -> Result<TrackHistory, ScenarioError> {
+    let fail = |e: &dyn std::fmt::Display| smoothing_error(&format!("track {}", history.name()), e);
+    let rows = history.rows();
+    if states.len() != rows.len() {
+        return Err(fail(&format!(
+            "{} rows against {} aircraft-IMM states",
+            rows.len(),
+            states.len()
+        )));
+    }
+    let mut track: Option<AircraftTrack<2, 3>> = None;
+    let mut step_of = Vec::with_capacity(rows.len());
+    for (k, (r, est)) in rows.iter().zip(states).enumerate() {
+        let est = **est
+            .as_ref()
+            .ok_or_else(|| fail(&format!("row {k} has no aircraft-IMM state")))?;
+        match &mut track {
+            None => {
+                track = Some(AircraftTrack::new(*imm.markov(), r.t, est).map_err(|e| fail(&e))?);
             }
             Some(t) => {
                 let last = t.steps()[t.steps().len() - 1].time();

@@ -1,0 +1,366 @@
+//! The record of an aircraft-IMM forward pass for smoothing.
+
+use argus_core_math::{Matrix, Vector};
+use argus_filters::{SmoothError, SmoothingFilter};
+
+use super::backward::{AircraftSmoothed, aircraft_smooth};
+use super::pair::{PairTransition, ct_to_cv_cross};
+use crate::aircraft::mixing::{augmented, kinematic_marginal};
+use crate::aircraft::{AircraftEstimate, AircraftImm, AircraftRadar, AircraftUpdate};
+use crate::markov::log_sum_exp;
+use crate::{ImmError, ImmSmoothError, MarkovMatrix, PairWeights};
+
+/// The transition into a step (module docs, forward record): every mode's filtered
+/// estimate of the step before brought into every mode's state and predicted through its
+/// model, with the cross covariance, and `ln μ̄ⱼ`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AircraftTransition<const C: usize, const R: usize> {
+    /// `[i][j]`: CV mode `i` through CV model `j` (identity map).
+    pub(super) cv_cv: [[PairTransition<4, 4>; C]; C],
+    /// `[i]`: CV mode `i` augmented with `(ω̂ᵃ, σᵃ²)` through the CT model.
+    pub(super) cv_ct: [PairTransition<4, 5>; C],
+    /// `[j]`: the CT mode's kinematic marginal through CV model `j`.
+    pub(super) ct_cv: [PairTransition<5, 4>; C],
+    /// The CT mode through the CT model.
+    pub(super) ct_ct: PairTransition<5, 5>,
+    pub(super) log_cbar: [f64; R],
+}
+
+impl<const C: usize, const R: usize> AircraftTransition<C, R> {
+    /// CV mode `i` through CV model `j`.
+    #[must_use]
+    pub fn cv_cv(&self, i: usize, j: usize) -> Option<&PairTransition<4, 4>> {
+        self.cv_cv.get(i).and_then(|r| r.get(j))
+    }
+
+    /// CV mode `i`, augmented, through the CT model.
+    #[must_use]
+    pub fn cv_ct(&self, i: usize) -> Option<&PairTransition<4, 5>> {
+        self.cv_ct.get(i)
+    }
+
+    /// The CT mode's marginal through CV model `j`.
+    #[must_use]
+    pub fn ct_cv(&self, j: usize) -> Option<&PairTransition<5, 4>> {
+        self.ct_cv.get(j)
+    }
+
+    /// The CT mode through the CT model.
+    #[must_use]
+    pub fn ct_ct(&self) -> &PairTransition<5, 5> {
+        &self.ct_ct
+    }
+
+    /// `ln μ̄ⱼ = ln Σᵢ πᵢⱼ μᵢ`.
+    #[must_use]
+    pub fn log_predicted_probabilities(&self) -> &[f64; R] {
+        &self.log_cbar
+    }
+}
+
+/// One step of an aircraft-IMM forward pass: time, the transition from the step before
+/// (none for the first), the IMM's posterior.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AircraftStep<const C: usize, const R: usize> {
+    pub(super) time: f64,
+    pub(super) transition: Option<AircraftTransition<C, R>>,
+    pub(super) filtered: AircraftEstimate<C, R>,
+}
+
+impl<const C: usize, const R: usize> AircraftStep<C, R> {
+    /// The time (s).
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The transition from the step before.
+    #[must_use]
+    pub fn transition(&self) -> Option<&AircraftTransition<C, R>> {
+        self.transition.as_ref()
+    }
+
+    /// The IMM's posterior at this step.
+    #[must_use]
+    pub fn filtered(&self) -> &AircraftEstimate<C, R> {
+        &self.filtered
+    }
+}
+
+/// The transition from the posterior `prev` over `dt` (module docs, forward record):
+/// the mixing maps of [`AircraftImm`] (identity, the CT marginal, the augmentation with
+/// the IMM's own [`crate::Augmentation`] of `prev`'s CT mode), then each model's
+/// [`SmoothingFilter::predict_with_cross`].
+///
+/// # Errors
+/// [`ImmError::Filter`] naming the model whose prediction failed; [`ImmError::Math`]
+/// for a mixing map that failed numerically.
+pub(super) fn transition<Fcv, Fct, const C: usize, const R: usize>(
+    imm: &AircraftImm<Fcv, Fct, C, R>,
+    prev: &AircraftEstimate<C, R>,
+    dt: f64,
+) -> Result<AircraftTransition<C, R>, ImmError>
+where
+    Fcv: SmoothingFilter<4>,
+    Fct: SmoothingFilter<5>,
+{
+    let filter = |mode: usize| move |source| ImmError::Filter { mode, source };
+    let cvf = imm.cv_filters();
+    let ctf = imm.ct_filter();
+    // CT → CT.
+    let tr = ctf.predict_with_cross(&prev.ct, dt).map_err(filter(C))?;
+    let ct_ct = PairTransition::new(*tr.predicted(), *tr.cross())?;
+    // CT → CV j: the marginal, its cross covariance extended to ω by regression.
+    let marginal = kinematic_marginal(&prev.ct)?;
+    let mut ct_cv = [PairTransition::new(marginal, Matrix::zeros())?; C];
+    for (j, (f, out)) in cvf.iter().zip(ct_cv.iter_mut()).enumerate() {
+        let tr = f.predict_with_cross(&marginal, dt).map_err(filter(j))?;
+        *out = PairTransition::new(*tr.predicted(), ct_to_cv_cross(&prev.ct, tr.cross())?)?;
+    }
+    // CV i → CT: [x̂ᵢ; ω̂ᵃ], diag(Pᵢ, σᵃ²); xᵢ is the augmented state's first four
+    // components, so Cov(xᵢ, x⁻) is the first four rows of the 5 × 5 cross covariance.
+    let (omega, var) = imm.augmentation().turn_rate(&prev.ct);
+    let mut cv_ct = [PairTransition::new(ct_ct.predicted, Matrix::zeros())?; C];
+    for (g, out) in prev.cv.iter().zip(cv_ct.iter_mut()) {
+        let aug = augmented(g, omega, var)?;
+        let tr = ctf.predict_with_cross(&aug, dt).map_err(filter(C))?;
+        let cross: Matrix<4, 5> = tr.cross().fixed_view::<4, 5>(0, 0).into_owned();
+        *out = PairTransition::new(*tr.predicted(), cross)?;
+    }
+    // CV i → CV j: identity.
+    let mut cv_cv = [[PairTransition::new(marginal, Matrix::zeros())?; C]; C];
+    for (g, row) in prev.cv.iter().zip(cv_cv.iter_mut()) {
+        for (j, (f, out)) in cvf.iter().zip(row.iter_mut()).enumerate() {
+            let tr = f.predict_with_cross(g, dt).map_err(filter(j))?;
+            *out = PairTransition::new(*tr.predicted(), *tr.cross())?;
+        }
+    }
+    // ln μ̄ⱼ = ln Σᵢ πᵢⱼ μᵢ (log-sum-exp over the kept logarithms).
+    let log_pi = imm.markov().log_matrix();
+    let log_mu = prev.log_mode_probabilities();
+    let log_cbar = core::array::from_fn(|j| {
+        let terms: [f64; R] = core::array::from_fn(|i| log_pi[(i, j)] + log_mu[i]);
+        log_sum_exp(&terms)
+    });
+    Ok(AircraftTransition {
+        cv_cv,
+        cv_ct,
+        ct_cv,
+        ct_ct,
+        log_cbar,
+    })
+}
+
+/// An aircraft-IMM forward pass recorded for smoothing ([`super`] for the equations).
+///
+/// [`AircraftTrack::step`] runs one [`AircraftImm::step`] and records it;
+/// [`AircraftTrack::push`] records a posterior the caller computed with the same IMM
+/// (plots of one instant applied in turn, coasting via
+/// [`crate::AircraftPrediction::into_estimate`], a tracker's track). A failed step is
+/// recorded: every later call and [`AircraftTrack::smooth`] return it, naming the step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AircraftTrack<const C: usize, const R: usize> {
+    markov: MarkovMatrix<R>,
+    steps: Vec<AircraftStep<C, R>>,
+    failure: Option<ImmSmoothError>,
+}
+
+impl<const C: usize, const R: usize> AircraftTrack<C, R> {
+    /// A track of an IMM with transition matrix `markov`, starting at `time` with
+    /// `initial` (step 0).
+    ///
+    /// # Errors
+    /// [`SmoothError::TimeNotIncreasing`] for a non-finite `time`.
+    pub fn new(
+        markov: MarkovMatrix<R>,
+        time: f64,
+        initial: AircraftEstimate<C, R>,
+    ) -> Result<Self, ImmSmoothError> {
+        if !time.is_finite() {
+            return Err(SmoothError::TimeNotIncreasing {
+                step: 0,
+                prev: f64::NEG_INFINITY,
+                now: time,
+            }
+            .into());
+        }
+        Ok(Self {
+            markov,
+            steps: vec![AircraftStep {
+                time,
+                transition: None,
+                filtered: initial,
+            }],
+            failure: None,
+        })
+    }
+
+    /// The record of posteriors `estimates[k]` at `times[k]` computed by `imm` (one per
+    /// step, in time order).
+    ///
+    /// # Errors
+    /// [`SmoothError::LengthMismatch`] when the two lengths differ,
+    /// [`SmoothError::Empty`] when there is none; as [`AircraftTrack::push`].
+    pub fn from_posteriors<Fcv, Fct>(
+        imm: &AircraftImm<Fcv, Fct, C, R>,
+        times: &[f64],
+        estimates: &[AircraftEstimate<C, R>],
+    ) -> Result<Self, ImmSmoothError>
+    where
+        Fcv: SmoothingFilter<4>,
+        Fct: SmoothingFilter<5>,
+    {
+        if times.len() != estimates.len() {
+            return Err(SmoothError::LengthMismatch {
+                what: "aircraft IMM posteriors (against their times)",
+                expected: times.len(),
+                found: estimates.len(),
+            }
+            .into());
+        }
+        let (Some(t0), Some(e0)) = (times.first(), estimates.first()) else {
+            return Err(SmoothError::Empty.into());
+        };
+        let mut track = Self::new(*imm.markov(), *t0, *e0)?;
+        track.steps.reserve(times.len() - 1);
+        for (t, e) in times.iter().zip(estimates).skip(1) {
+            track.push(imm, *t, *e)?;
+        }
+        Ok(track)
+    }
+
+    /// The transition matrix.
+    #[must_use]
+    pub fn markov(&self) -> &MarkovMatrix<R> {
+        &self.markov
+    }
+
+    /// The recorded steps.
+    #[must_use]
+    pub fn steps(&self) -> &[AircraftStep<C, R>] {
+        &self.steps
+    }
+
+    /// The latest posterior.
+    #[must_use]
+    pub fn latest(&self) -> &AircraftEstimate<C, R> {
+        // Never empty: `new` pushes the first step and nothing removes one.
+        &self.steps[self.steps.len() - 1].filtered
+    }
+
+    /// The failure recorded, if any.
+    #[must_use]
+    pub fn failure(&self) -> Option<&ImmSmoothError> {
+        self.failure.as_ref()
+    }
+
+    fn fail(&mut self, e: ImmSmoothError) -> ImmSmoothError {
+        self.failure = Some(e.clone());
+        e
+    }
+
+    /// Checks `time` against the latest step; returns `(step, dt)`.
+    fn next_interval(&mut self, time: f64) -> Result<(usize, f64), ImmSmoothError> {
+        if let Some(e) = &self.failure {
+            return Err(e.clone());
+        }
+        let step = self.steps.len();
+        let prev = self.steps[step - 1].time;
+        if !(time > prev && time.is_finite()) {
+            return Err(self.fail(
+                SmoothError::TimeNotIncreasing {
+                    step,
+                    prev,
+                    now: time,
+                }
+                .into(),
+            ));
+        }
+        Ok((step, time - prev))
+    }
+
+    /// Records `estimate`, the posterior at `time` of `imm` run from the latest step:
+    /// forms the transition from the latest posterior (`2 C + C² + 1` predictions).
+    ///
+    /// # Errors
+    /// [`SmoothError::TimeNotIncreasing`] (inside [`ImmSmoothError::Sequence`]) or
+    /// [`ImmSmoothError::ForwardFailed`] when a pair's prediction fails; both recorded.
+    pub fn push<Fcv, Fct>(
+        &mut self,
+        imm: &AircraftImm<Fcv, Fct, C, R>,
+        time: f64,
+        estimate: AircraftEstimate<C, R>,
+    ) -> Result<(), ImmSmoothError>
+    where
+        Fcv: SmoothingFilter<4>,
+        Fct: SmoothingFilter<5>,
+    {
+        let (step, dt) = self.next_interval(time)?;
+        let tr = match transition(imm, self.latest(), dt) {
+            Ok(tr) => tr,
+            Err(source) => return Err(self.fail(ImmSmoothError::ForwardFailed { step, source })),
+        };
+        self.steps.push(AircraftStep {
+            time,
+            transition: Some(tr),
+            filtered: estimate,
+        });
+        Ok(())
+    }
+
+    /// One [`AircraftImm::step`] from the latest step to `time` with the plot `z` of
+    /// `radar`, recorded; returns the IMM's update.
+    ///
+    /// # Errors
+    /// As [`AircraftTrack::push`]; [`ImmSmoothError::ForwardFailed`] when the IMM step
+    /// fails (recorded).
+    pub fn step<Fcv, Fct>(
+        &mut self,
+        imm: &AircraftImm<Fcv, Fct, C, R>,
+        time: f64,
+        radar: &AircraftRadar,
+        z: &Vector<2>,
+    ) -> Result<AircraftUpdate<C, R>, ImmSmoothError>
+    where
+        Fcv: SmoothingFilter<4>,
+        Fct: SmoothingFilter<5>,
+    {
+        let (step, dt) = self.next_interval(time)?;
+        let upd = match imm.step(self.latest(), dt, radar, z) {
+            Ok(u) => u,
+            Err(source) => return Err(self.fail(ImmSmoothError::ForwardFailed { step, source })),
+        };
+        let tr = match transition(imm, self.latest(), dt) {
+            Ok(tr) => tr,
+            Err(source) => return Err(self.fail(ImmSmoothError::ForwardFailed { step, source })),
+        };
+        self.steps.push(AircraftStep {
+            time,
+            transition: Some(tr),
+            filtered: upd.estimate,
+        });
+        Ok(upd)
+    }
+
+    /// Fixed-interval smoothing of the whole track (default pair weights).
+    ///
+    /// # Errors
+    /// A recorded failure; [`ImmSmoothError::Backward`] for a numerical failure.
+    pub fn smooth(&self) -> Result<Vec<AircraftSmoothed<C, R>>, ImmSmoothError> {
+        self.smooth_with(PairWeights::default())
+    }
+
+    /// [`AircraftTrack::smooth`] with the chosen pair weights.
+    ///
+    /// # Errors
+    /// As [`AircraftTrack::smooth`].
+    pub fn smooth_with(
+        &self,
+        weights: PairWeights,
+    ) -> Result<Vec<AircraftSmoothed<C, R>>, ImmSmoothError> {
+        if let Some(e) = &self.failure {
+            return Err(e.clone());
+        }
+        aircraft_smooth(&self.markov, weights, &self.steps)
+    }
+}
