@@ -30,7 +30,7 @@ impl<const R: usize> ModeWeights<R> {
     };
 
     /// From (normalised) logarithms `ln μⱼ`.
-    fn from_logs(log: &[f64; R]) -> Self {
+    pub(crate) fn from_logs(log: &[f64; R]) -> Self {
         let lin = log.map(f64::exp);
         let mut kept = [0.0; R];
         for ((k, l), p) in kept.iter_mut().zip(log).zip(&lin) {

@@ -54,6 +54,7 @@ mod evidence;
 mod imm;
 mod markov;
 mod multi;
+mod multi_merged;
 mod polar;
 pub mod smooth;
 mod variational;
