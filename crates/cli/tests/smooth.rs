@@ -195,17 +195,7 @@ fn bad_smoothing_flags_are_clear_errors() {
         assert!(err.contains(msg), "{flags:?}: {err}");
         assert!(csv.is_empty(), "{flags:?} wrote a file");
     }
-    // Kinds without a smoother say which kinds smooth.
-    let multi = KF.replace(
-        "kind = \"kf-converted\"\nsigma_a = 0.5\n",
-        "kind = \"multi-imm\"\nmodels = [{ kind = \"cv\", sigma_a = 0.1 }]\nmarkov = [[1.0]]\n",
-    );
-    let (code, err, _) = track(dir.path(), &multi, &plots, &["--smooth"]);
-    assert_eq!(code, Some(2));
-    assert!(
-        err.contains("estimator.kind") && err.contains("kf-converted, ekf, imm and aircraft-imm"),
-        "{err}"
-    );
+    // Every 2-D kind smooths (the multi-IMM: tests/smooth_multi_imm_tracks.rs).
 }
 
 #[test]

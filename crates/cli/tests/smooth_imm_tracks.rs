@@ -23,6 +23,7 @@ const P_STAY: f64 = 0.95;
 /// The reports' noise: `r_xx = r_yy = 400 m²`, `r_xy = 30 m²`.
 const R: [f64; 3] = [400.0, 30.0, 400.0];
 
+// The multi-IMM's tracks are smoothed too: tests/smooth_multi_imm_tracks.rs.
 const SENSOR: &str = "[[sensor]]\nid = 1\nposition = [0.0, 0.0]\n\n";
 
 fn estimator() -> String {
@@ -273,25 +274,4 @@ fn a_fixed_lag_as_long_as_the_track_is_the_fixed_interval_smoother() {
     assert_eq!(interval, lag);
     let (_, _, lag2) = track(dir.path(), &tracker(""), &plots, &["--smooth-lag", "2"]);
     assert_ne!(interval, lag2);
-}
-
-#[test]
-fn the_multi_imm_is_refused_by_name() {
-    let dir = tempfile::tempdir().unwrap();
-    let plots = dir.path().join("p.csv");
-    write_plots(&plots, None);
-    let multi = tracker("")
-        .replace("kind = \"imm\"", "kind = \"multi-imm\"")
-        .replace(
-            "position = [0.0, 0.0]\n",
-            "position = [0.0, 0.0]\nsigma_range = 50.0\nsigma_azimuth_deg = 0.1\n",
-        );
-    let (code, err, csv) = track(dir.path(), &multi, &plots, &["--smooth"]);
-    assert_eq!(code, Some(2), "{err}");
-    assert!(csv.is_empty());
-    assert!(
-        err.contains("estimator.kind") && err.contains("kf-converted, ekf, imm and aircraft-imm"),
-        "{err}"
-    );
-    // The aircraft IMM's tracks are smoothed: tests/smooth_aircraft_tracks.rs.
 }

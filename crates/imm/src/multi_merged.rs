@@ -158,4 +158,61 @@ mod tests {
         assert!((c.mean() - d.mean()).norm() <= 1e-9 * d.mean().norm());
         assert!((c.cov() - d.cov()).norm() <= 1e-9 * d.cov().norm());
     }
+
+    /// One hypothesis (factor 1, no clip): the multi-IMM is the plain IMM with the
+    /// reference `R` (eq (13) keeps it), so the IMM smoother over its merged posteriors
+    /// ([`crate::ImmTrack::push`], what `argus track --smooth` records for `multi-imm`)
+    /// equals the smoother of the plain IMM's own forward pass ([`crate::ImmTrack::step`],
+    /// the `imm` kind's) on the same plots (1e-9 relative: the same arithmetic, the merge
+    /// a one-part moment match).
+    #[test]
+    fn one_hypothesis_smooths_as_the_imm() {
+        use crate::test_support::{beam_times, paper_imm, plots, two_point};
+        use crate::{ImmTrack, MultiImm, NoiseGrid, PlotConversion, UnbiasedConversion};
+        use rand::SeedableRng;
+        let times = beam_times();
+        let n = 40;
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let pl = plots(&times[..n], 60.0, 0.002, &mut rng);
+        let var = NoiseVariances::from_sigmas(60.0, 0.002).unwrap();
+        let imm = paper_imm();
+        let grid = NoiseGrid::<1>::custom([[1.0, 1.0]]).unwrap();
+        let m = MultiImm::new(paper_imm(), grid, None).unwrap();
+        let conv = UnbiasedConversion::<4>::new(0, 2).unwrap();
+        let start = two_point(&pl[0], &pl[1], times[1] - times[0], &var);
+        let mut est = MultiImmEstimate::new(start, var);
+        let mut merged = ImmTrack::new(*imm.markov(), times[1], est.merged().unwrap()).unwrap();
+        let mut plain = ImmTrack::new(*imm.markov(), times[1], start).unwrap();
+        let mut filtered = vec![start.combined().unwrap()];
+        for k in 2..n {
+            est = m
+                .step(&est, times[k] - times[k - 1], &pl[k], &conv)
+                .unwrap()
+                .estimate;
+            merged.push(&imm, times[k], est.merged().unwrap()).unwrap();
+            let (meas, z) = conv.convert(&pl[k], &var).unwrap();
+            plain.step(&imm, times[k], &meas, &z).unwrap();
+            filtered.push(plain.latest().combined().unwrap());
+        }
+        let (a, b) = (merged.smooth().unwrap(), plain.smooth().unwrap());
+        assert_eq!(a.len(), n - 1);
+        let mut moved = 0.0_f64;
+        for (k, (a, b)) in a.iter().zip(&b).enumerate() {
+            let (ga, gb) = (&a.combined, &b.combined);
+            assert!(
+                (ga.mean() - gb.mean()).norm() <= 1e-9 * gb.mean().norm(),
+                "step {k}"
+            );
+            assert!(
+                (ga.cov() - gb.cov()).norm() <= 1e-9 * gb.cov().norm(),
+                "step {k}"
+            );
+            for (p, q) in a.mode_probabilities.iter().zip(&b.mode_probabilities) {
+                assert!((p - q).abs() <= 1e-9, "step {k}");
+            }
+            moved = moved.max((gb.mean() - filtered[k].mean()).norm());
+        }
+        // Both sides can fail: the smoother moves the estimate (metres, not round-off).
+        assert!(moved > 1.0, "{moved}");
+    }
 }

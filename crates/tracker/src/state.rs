@@ -107,6 +107,14 @@ impl TrackState {
         }
     }
 
+    /// The multi-IMM's state: its `K` IMM estimates and noise-mode probabilities.
+    pub(crate) fn multi_imm_estimate(&self) -> Option<&MultiState> {
+        match self {
+            Self::Multi(m) => Some(m),
+            Self::Single | Self::Imm(_) | Self::Aircraft(_) => None,
+        }
+    }
+
     /// The aircraft IMM's mode-conditioned estimates and probabilities.
     pub(crate) fn aircraft_estimate(&self) -> Option<&AircraftState> {
         match self {

@@ -1,8 +1,9 @@
 //! Tracks, their ids and statuses.
 
 use argus_core_math::Gaussian;
-use argus_imm::{AircraftEstimate, ImmEstimate, NoiseVariances};
+use argus_imm::{AircraftEstimate, ImmEstimate, MultiImmEstimate, NoiseVariances};
 
+use crate::MULTI_IMM_HYPOTHESES;
 use crate::state::{ModeProbabilities, TrackState};
 
 /// A track's id: numbered from 0 in order of initiation and never reused.
@@ -161,6 +162,18 @@ impl Track {
     #[must_use]
     pub fn imm_estimate(&self) -> Option<&ImmEstimate<4, 2>> {
         self.state.imm_estimate()
+    }
+
+    /// The multi-IMM's state at [`Track::time`] ([`crate::EstimatorConfig::MultiImm`]
+    /// only): its [`MULTI_IMM_HYPOTHESES`] IMM estimates (each the two-mode CV IMM's
+    /// mode-conditioned estimates and probabilities), the noise-mode probabilities `νᵐ`
+    /// and the noise reference — after a plot the multi-IMM's posterior, after a miss its
+    /// IMMs' mode predictions with `μ̄`. [`MultiImmEstimate::merged`] is its posterior
+    /// merged over the noise hypotheses, what an IMM smoother of the track's recorded
+    /// moments needs (`argus track --smooth`); a borrow.
+    #[must_use]
+    pub fn multi_imm_estimate(&self) -> Option<&MultiImmEstimate<4, 2, MULTI_IMM_HYPOTHESES>> {
+        self.state.multi_imm_estimate()
     }
 
     /// The aircraft IMM's state at [`Track::time`] ([`crate::EstimatorConfig::Aircraft`]

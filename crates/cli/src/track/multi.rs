@@ -289,7 +289,7 @@ pub(super) fn run(
 ) -> Result<(usize, PathBuf), CliError> {
     let c = &m.config;
     let mut recorded = match files.smoothing {
-        Some(_) => Some(Recorded::new(files, c)?),
+        Some(_) => Some(Recorded::new(c)?),
         None => None,
     };
     let mut tracker = Tracker::new(c.clone())?;

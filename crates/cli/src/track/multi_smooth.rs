@@ -47,9 +47,21 @@
 //! `tests/smooth_aircraft_tracks.rs`); with JPDA it smooths the recorded PDA moments.
 //! The smoothed mode probabilities go to `mu_1s, mu_2s, mu_3s`.
 //!
-//! # Not smoothed
-//! The multi-IMM (`multi-imm`) is refused with a typed error naming `estimator.kind`: it
-//! keeps a noise-hypothesis mixture the IMM smoother does not model.
+//! # The multi-IMM (`multi-imm`, [`EstimatorConfig::MultiImm`])
+//! Each row keeps the track's multi-IMM state ([`Track::multi_imm_estimate`]: the
+//! [`MULTI_IMM_HYPOTHESES`] IMMs' mode estimates and probabilities and the noise-mode
+//! probabilities `νᵐ`, after the plot or, after a miss, the IMMs' mode predictions), and
+//! the track is smoothed over its recorded moments, as IMM-JPDA tracks are: the
+//! hypotheses differ only in `R` and share the dynamics (`sigma_a_low`, `sigma_a_high`,
+//! `p_stay`), so the posterior merged over the hypotheses
+//! ([`MultiImmEstimate::merged`]: per mode `i` the moment match of `Σₘ νₘ μₘⁱ N(x̂ₘⁱ,
+//! Pₘⁱ) / μⁱ`, `μⁱ = Σₘ νₘ μₘⁱ`) is an IMM posterior of those dynamics, and the two-mode
+//! IMM's smoother above runs over the merged posteriors (its record recomputed from the
+//! row before's merged modes). This smooths the recorded merged moments with the `R` the
+//! forward pass estimated; it is not a smoother of the adaptive noise model, which has
+//! none (its grid moves with the data). With GNN it is the single-target `multi-imm
+//! --smooth` over the same plots (tested to 1e-9, `tests/smooth_multi_imm_tracks.rs`).
+//! The smoothed mode probabilities go to `mu_1s, mu_2s`.
 //!
 //! Which rows: a smoothed track's rows from its first (the tentative ones included) to
 //! its last before deletion; a track's `deleted` row and every row of a track never
@@ -60,14 +72,16 @@ use std::collections::BTreeMap;
 use argus_core_math::Gaussian;
 use argus_filters::Kf;
 use argus_imm::{
-    AircraftEkf, AircraftEstimate, Imm, ImmEstimate, ImmSmoothed, MarkovMatrix, NoiseVariances,
+    AircraftEkf, AircraftEstimate, Imm, ImmEstimate, ImmSmoothed, MarkovMatrix, MultiImmEstimate,
+    NoiseVariances,
 };
 use argus_motion_models::Cv2D;
 use argus_tracker::{
-    DeletionReason, EstimatorConfig, ModeProbabilities, SensorId, Track, TrackStatus, TrackerConfig,
+    DeletionReason, EstimatorConfig, MULTI_IMM_HYPOTHESES, ModeProbabilities, SensorId, Track,
+    TrackStatus, TrackerConfig,
 };
 
-use super::multi::{Files, reason_name, status_name};
+use super::multi::{reason_name, status_name};
 use super::rows::{Column, Point, TrackRows};
 use super::smooth::{self, Failure, ImmRecorder, Smoothing, rts_rows};
 use super::smooth_aircraft::AircraftRecorder;
@@ -90,6 +104,8 @@ struct Row {
     score: f64,
     /// The IMM state (IMM tracks only).
     imm: Option<ImmEstimate<4, 2>>,
+    /// The multi-IMM state (multi-IMM tracks only; boxed: its K IMMs).
+    multi: Option<Box<MultiImmEstimate<4, 2, MULTI_IMM_HYPOTHESES>>>,
     /// The aircraft-IMM state (aircraft tracks only; boxed: 584 bytes).
     aircraft: Option<Box<AircraftEstimate<2, 3>>>,
     /// The aircraft IMM's turn rate and its σ (rad/s).
@@ -101,7 +117,8 @@ struct Row {
 enum Smoother {
     /// RTS, with the tracks' CV Kalman filter.
     Rts(Kf<Cv2D>),
-    /// The IMM smoother, with the tracks' IMM.
+    /// The IMM smoother, with the tracks' IMM (for the multi-IMM: its IMMs' common
+    /// dynamics, over the posteriors merged over the noise hypotheses).
     Imm(Imm2),
     /// The aircraft-IMM smoother, with the tracks' aircraft IMM.
     Aircraft(Box<AircraftEkf<2, 3>>),
@@ -132,10 +149,9 @@ impl Recorded {
     /// An empty record for the tracker configured by `c`.
     ///
     /// # Errors
-    /// [`CliError::Input`] at `estimator.kind` for the multi-IMM and the aircraft IMM
-    /// (module docs); [`CliError::Motion`] / [`CliError::Imm`] for a bad `sigma_a` or
-    /// `p_stay` (already refused by the configuration).
-    pub(super) fn new(files: &Files<'_>, c: &TrackerConfig) -> Result<Self, CliError> {
+    /// [`CliError::Motion`] / [`CliError::Imm`] for a bad `sigma_a` or `p_stay` (already
+    /// refused by the configuration).
+    pub(super) fn new(c: &TrackerConfig) -> Result<Self, CliError> {
         let smoother = match c.estimator {
             EstimatorConfig::Kf | EstimatorConfig::Ekf => {
                 Smoother::Rts(Kf::new(Cv2D::discrete(c.sigma_a)?))
@@ -144,18 +160,14 @@ impl Recorded {
                 sigma_a_low,
                 sigma_a_high,
                 p_stay,
+            }
+            | EstimatorConfig::MultiImm {
+                sigma_a_low,
+                sigma_a_high,
+                p_stay,
+                ..
             } => Smoother::Imm(tracker_imm(sigma_a_low, sigma_a_high, p_stay)?),
             EstimatorConfig::Aircraft { tuning } => Smoother::Aircraft(Box::new(tuning.build()?)),
-            _ => {
-                return Err(CliError::input(
-                    files.config,
-                    None,
-                    Some("estimator.kind"),
-                    "--smooth / --smooth-lag with [tracker]: the multi-IMM's noise \
-                     hypotheses have no smoother; the tracker's kinds that smooth are \
-                     kf-converted, ekf, imm and aircraft-imm",
-                ));
-            }
         };
         Ok(Self {
             rows: Vec::new(),
@@ -186,6 +198,7 @@ impl Recorded {
             noise: track.noise_estimate(),
             score: track.score(),
             imm: track.imm_estimate().copied(),
+            multi: track.multi_imm_estimate().map(|m| Box::new(*m)),
             aircraft: track.aircraft_estimate().map(|a| Box::new(*a)),
             turn_rate: track.turn_rate(),
         });
@@ -271,9 +284,23 @@ fn imm_rows(
     let row_step = smooth::steps(&times).row_step;
     for (k, &i) in live.iter().enumerate() {
         let r = &rows[i];
-        let est = r.imm.ok_or_else(|| {
-            Failure::new(row_step[k], r.time, "the row has no IMM state".to_owned())
-        })?;
+        let est = match (r.imm, r.multi.as_deref()) {
+            (Some(est), _) => est,
+            (None, Some(m)) => m.merged().map_err(|e| {
+                Failure::new(
+                    row_step[k],
+                    r.time,
+                    format!("the multi-IMM's hypotheses cannot be merged: {e}"),
+                )
+            })?,
+            (None, None) => {
+                return Err(Failure::new(
+                    row_step[k],
+                    r.time,
+                    "the row has no IMM state".to_owned(),
+                ));
+            }
+        };
         rec.record(imm, r.time, est)?;
     }
     let s: Vec<ImmSmoothed<4, 2>> = rec.smooth(imm, how)?;

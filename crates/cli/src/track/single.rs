@@ -69,13 +69,6 @@ pub(super) fn run(
             )
         }
         (Estimator::Imm(spec), false) => single_imm::imm(ctx, spec, plots),
-        (Estimator::MultiImm(..), _) if ctx.smoothing.is_some() => Err(CliError::input(
-            ctx.config,
-            None,
-            Some("estimator.kind"),
-            "--smooth / --smooth-lag: the multi-IMM is not smoothed (no smoother for its noise \
-             hypotheses); the kinds that smooth are kf-converted, ekf, imm and aircraft-imm",
-        )),
         (Estimator::MultiImm(spec, multi), false) => {
             single_imm::multi_imm(ctx, spec, *multi, plots)
         }

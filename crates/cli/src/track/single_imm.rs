@@ -3,6 +3,19 @@
 //! conversion with the sensor's σ, Cartesian reports as given), and seed 000's multi-IMM
 //! around it over one polar radar's plots. The mode count `R` and the hypothesis count
 //! `K` are compile-time sizes, picked here from the run-time configuration.
+//!
+//! With `--smooth` / `--smooth-lag` the IMM is smoothed by `argus_imm`'s IMM smoother
+//! over its recorded forward pass ([`ImmRecorder`]). The multi-IMM is smoothed the same
+//! way over its recorded moments: its `K` IMMs share the dynamics (the models and the
+//! Markov matrix) and differ only in `R`, so its posterior merged over the noise
+//! hypotheses ([`MultiImmEstimate::merged`]) is an IMM posterior of the common dynamics,
+//! and the IMM smoother runs over the sequence of merged posteriors. This smooths the
+//! recorded merged moments, with the `R` the forward pass estimated at each plot; it is
+//! not a smoother of the adaptive noise model, which has none (its grid moves with the
+//! data), and the forward record it smooths is recomputed from the merged posterior, not
+//! from each hypothesis (the usual smoother of a mixture filter's moment-matched output,
+//! as for the tracker's IMM-JPDA tracks). The smoothed mode probabilities go to
+//! `mu_1s …`, as for the IMM.
 
 use argus_core_math::Gaussian;
 use argus_filters::{Kf, two_point_cv2};
@@ -214,17 +227,24 @@ fn track_multi_k<const R: usize, const K: usize>(
     let p2 = start.second;
     let mut est =
         MultiImmEstimate::<4, R, K>::new(start_estimate::<R>(spec, start.estimate)?, reference);
-    let mut rows = TrackRows::with_reference(Column::single(2, R, true), ctx.reference);
     let mut t = p2.time();
-    let push = |rows: &mut TrackRows, t: f64, est: &MultiImmEstimate<4, R, K>, c: &Gaussian<4>| {
-        let mu = est.mode_probabilities();
-        rows.push(
-            &Point::new(t, c)
-                .modes(Some(&mu))
-                .noise(Some(*est.reference())),
-        );
-    };
-    push(&mut rows, t, &est, &est.combined()?);
+    // With smoothing, the posteriors merged over the noise hypotheses are recorded as an
+    // IMM forward pass of the common dynamics (module docs).
+    let mut record = ctx
+        .smoothing
+        .map(|_| ImmRecorder::new(*multi.imm().markov()));
+    let fail = |f: Failure| f.into_cli(1);
+    let mut out: Vec<(f64, Gaussian<4>, [f64; R], NoiseVariances)> =
+        Vec::with_capacity(start.rest.len() + 1);
+    if let Some(r) = &mut record {
+        r.record(multi.imm(), t, est.merged()?).map_err(fail)?;
+    }
+    out.push((
+        t,
+        est.combined()?,
+        est.mode_probabilities(),
+        *est.reference(),
+    ));
     for p in plots.iter().take(2).chain(start.rest) {
         if p.sensor() != sensor.id {
             return Err(not_polar(
@@ -245,7 +265,34 @@ fn track_multi_k<const R: usize, const K: usize>(
             .estimate;
         t = p.time();
         let c = est.combined().map_err(ctx.imm_error(p))?;
-        push(&mut rows, t, &est, &c);
+        if let Some(r) = &mut record {
+            let merged = est.merged().map_err(ctx.imm_error(p))?;
+            r.record(multi.imm(), t, merged).map_err(fail)?;
+        }
+        out.push((t, c, est.mode_probabilities(), *est.reference()));
+    }
+    let smoothed = match (record, ctx.smoothing) {
+        (Some(r), Some(how)) => Some(r.smooth(multi.imm(), how).map_err(fail)?),
+        _ => None,
+    };
+    let mut columns = Column::single(2, R, true);
+    if smoothed.is_some() {
+        columns.extend(Column::smoothed_single(2, R));
+    }
+    let mut rows = TrackRows::with_reference(columns, ctx.reference);
+    let times: Vec<f64> = out.iter().map(|o| o.0).collect();
+    let row_step = smooth::steps(&times).row_step;
+    for (i, (t, c, mu, noise)) in out.iter().enumerate() {
+        let s = smoothed
+            .as_ref()
+            .and_then(|s| row_step.get(i).and_then(|&k| s.get(k)));
+        rows.push(
+            &Point::new(*t, c)
+                .modes(Some(mu))
+                .noise(Some(*noise))
+                .smoothed(s.map(|s| &s.combined))
+                .smoothed_modes(s.map(|s| s.mode_probabilities.as_slice())),
+        );
     }
     Ok(rows)
 }
