@@ -18,7 +18,7 @@ pub enum PairWeights {
     /// smoothed mean, `N(x̂ʲₖ₊₁|ₙ; x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ)`.
     ExpectationCorrection,
     /// The backward likelihood of mode `j` (the ratio of its smoothed estimate to the IMM's
-    /// mode-`j` prediction, [`super::likelihood`]) weighs each pair by
+    /// mode-`j` prediction, the `smooth::likelihood` module) weighs each pair by
     /// `∫ N(x; x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ) βⱼ(x) dx` and gives the pair's own smoothed estimate at
     /// `k + 1`, towards which the pair's RTS step goes (module docs, eqs (1b)–(5b)).
     #[default]

@@ -151,7 +151,8 @@ where
     })
 }
 
-/// An aircraft-IMM forward pass recorded for smoothing ([`super`] for the equations).
+/// An aircraft-IMM forward pass recorded for smoothing (the equations: the module docs of
+/// `aircraft::smooth`).
 ///
 /// [`AircraftTrack::step`] runs one [`AircraftImm::step`] and records it;
 /// [`AircraftTrack::push`] records a posterior the caller computed with the same IMM
