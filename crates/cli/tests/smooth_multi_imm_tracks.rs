@@ -7,10 +7,8 @@
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
-use std::path::Path;
-
 mod common;
-use common::{Row, argus, num, rows, track};
+use common::{Row, num, rmse_pair, rows, simulate_gimpo, track};
 
 const SENSOR: &str =
     "[[sensor]]\nid = 1\nposition = [0.0, 0.0]\nsigma_range = 70.0\nsigma_azimuth_deg = 0.08\n\n";
@@ -27,16 +25,6 @@ fn single() -> String {
 /// plot starts a tentative track), so the two runs would not see the same plots.
 fn tracker() -> String {
     format!("{SENSOR}{ESTIMATOR}\n[tracker]\nconfirm_m = 3\ngate_probability = 0.9999\n")
-}
-
-/// Simulates gimpo plots (seed `seed`) into `dir/sim.csv` and `dir/sim.truth.csv`.
-fn simulate_gimpo(dir: &Path, seed: u64) {
-    let s = seed.to_string();
-    let o = argus(
-        &["simulate", "gimpo", "--seed", &s, "--out", "sim.csv"],
-        dir,
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// The rows of the scene's one confirmed track (track 0), deleted row excluded (seed 4
@@ -131,27 +119,6 @@ fn a_gnn_multi_imm_track_smooths_as_the_single_target_multi_imm() {
     let (code, err, lag) = track(d, &single(), &plots, &["--smooth-lag", "10000"]);
     assert_eq!(code, Some(0), "{err}");
     assert_eq!(interval, lag);
-}
-
-/// The position RMSE of the filtered (`x, y`) and smoothed (`xs, ys`) columns against the
-/// truth file, leaving out the first 6 rows (the two-point start's transient).
-fn rmse_pair(csv: &str, dir: &Path) -> (f64, f64) {
-    let truth = rows(&std::fs::read_to_string(dir.join("sim.truth.csv")).unwrap());
-    let at = |t: &str| {
-        truth
-            .iter()
-            .find(|r| r["t"] == t)
-            .map(|r| (num(r, "x"), num(r, "y")))
-            .unwrap_or_else(|| panic!("no truth at {t}"))
-    };
-    let (mut f, mut s, mut n) = (0.0, 0.0, 0.0);
-    for r in rows(csv).iter().skip(6) {
-        let (x, y) = at(&r["t"]);
-        f += (num(r, "x") - x).powi(2) + (num(r, "y") - y).powi(2);
-        s += (num(r, "xs") - x).powi(2) + (num(r, "ys") - y).powi(2);
-        n += 1.0;
-    }
-    ((f / n).sqrt(), (s / n).sqrt())
 }
 
 #[test]

@@ -17,7 +17,7 @@ use argus_sim::{
 use rand::RngExt;
 
 mod common;
-use common::argus;
+use common::{argus, simulate_gimpo};
 
 /// `docs/examples/aircraft.toml` in the repository.
 fn example() -> PathBuf {
@@ -122,16 +122,6 @@ fn squared_errors(text: &str, truth: &dyn Fn(f64) -> [f64; 2]) -> Vec<f64> {
 
 fn rmse(se: &[f64]) -> f64 {
     (se.iter().sum::<f64>() / se.len() as f64).sqrt()
-}
-
-/// Simulates gimpo plots (seed `seed`) into `dir/sim.csv` and `dir/sim.truth.csv`.
-fn simulate_gimpo(dir: &Path, seed: u64) {
-    let s = seed.to_string();
-    let o = argus(
-        &["simulate", "gimpo", "--seed", &s, "--out", "sim.csv"],
-        dir,
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// The truth file's `t → [x, y]` (exact times: the truth is written at every plot time).

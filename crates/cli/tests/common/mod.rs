@@ -84,3 +84,44 @@ pub(crate) fn num(r: &Row, k: &str) -> f64 {
         .and_then(|v| v.parse().ok())
         .unwrap_or_else(|| panic!("column {k}: {:?}", r.get(k)))
 }
+
+/// Runs `argus simulate gimpo --seed <seed>` in `dir`: plots `dir/sim.csv`, truth
+/// `dir/sim.truth.csv`.
+///
+/// # Panics
+/// When the command fails (a test failure), with its stderr.
+#[allow(dead_code)]
+pub(crate) fn simulate_gimpo(dir: &Path, seed: u64) {
+    let s = seed.to_string();
+    let o = argus(
+        &["simulate", "gimpo", "--seed", &s, "--out", "sim.csv"],
+        dir,
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// The position RMSE of the filtered (`x, y`) and smoothed (`xs, ys`) columns of a tracks
+/// CSV against `dir/sim.truth.csv`, leaving out the first 6 rows (the two-point start's
+/// transient).
+///
+/// # Panics
+/// When the truth file cannot be read or has no row at a track row's time (a test failure).
+#[allow(clippy::unwrap_used, clippy::panic, dead_code)]
+pub(crate) fn rmse_pair(csv: &str, dir: &Path) -> (f64, f64) {
+    let truth = rows(&std::fs::read_to_string(dir.join("sim.truth.csv")).unwrap());
+    let at = |t: &str| {
+        truth
+            .iter()
+            .find(|r| r["t"] == t)
+            .map(|r| (num(r, "x"), num(r, "y")))
+            .unwrap_or_else(|| panic!("no truth at {t}"))
+    };
+    let (mut f, mut s, mut n) = (0.0, 0.0, 0.0);
+    for r in rows(csv).iter().skip(6) {
+        let (x, y) = at(&r["t"]);
+        f += (num(r, "x") - x).powi(2) + (num(r, "y") - y).powi(2);
+        s += (num(r, "xs") - x).powi(2) + (num(r, "ys") - y).powi(2);
+        n += 1.0;
+    }
+    ((f / n).sqrt(), (s / n).sqrt())
+}
