@@ -46,7 +46,7 @@ pub use prediction::{CovarianceForm, Innovation, MeasurementPrediction};
 pub use second_order::second_order_terms;
 pub use smooth::{
     FixedLagSmoother, Lag, Lagged, RtsStep, RtsTrack, SmoothError, SmoothingFilter, Transition,
-    rts_smooth, rts_smooth_into, rts_step,
+    rts_smooth, rts_smooth_into, rts_step, rts_step_across,
 };
 pub use ukf::{Ukf, UtParams};
 

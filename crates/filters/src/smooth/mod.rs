@@ -83,7 +83,7 @@ mod urts;
 
 pub use error::SmoothError;
 pub use fixed_lag::{FixedLagSmoother, Lag, Lagged};
-pub use rts::{rts_smooth, rts_smooth_into, rts_step};
+pub use rts::{rts_smooth, rts_smooth_into, rts_step, rts_step_across};
 pub use track::{RtsStep, RtsTrack};
 
 use argus_core_math::{Gaussian, MathError, Matrix, check_finite_matrix};

@@ -74,20 +74,42 @@ impl<const N: usize, Mo: MotionModel<N>> SmoothingFilter<N> for Ekf<Mo> {
 /// # Errors
 /// [`MathError::NotPositiveDefinite`] naming the predicted covariance (not factorable)
 /// or the smoothed covariance; [`MathError::NonFinite`] for a non-finite gain or result.
-#[allow(non_snake_case)]
 #[inline]
 pub fn rts_step<const N: usize>(
     filtered: &Gaussian<N>,
     transition: &Transition<N>,
     next_smoothed: &Gaussian<N>,
 ) -> Result<Gaussian<N>, MathError> {
-    let pred = transition.predicted();
-    let factor = SpdFactor::new_symmetric(pred.cov(), "predicted covariance")?;
-    let G = factor.solve_right(transition.cross());
+    rts_step_across(
+        filtered,
+        transition.predicted(),
+        transition.cross(),
+        next_smoothed,
+    )
+}
+
+/// [`rts_step`] between states of different sizes: `filtered` (size `NI`) at `k`, its
+/// prediction `predicted` into a state of size `NJ` at `k + 1` with the cross covariance
+/// `cross` = Cov(xₖ, xₖ₊₁) (`NI × NJ`), and `next_smoothed` in that state:
+/// `G = C (P⁻)⁻¹` (`NI × NJ`), `x̂ˢ = x̂ + G (x̂ˢₖ₊₁ − x̂⁻)`, `Pˢ = P + G (Pˢₖ₊₁ − P⁻) Gᵀ`
+/// (the same equations; used by IMM smoothers whose modes have unequal state sizes).
+///
+/// # Errors
+/// As [`rts_step`].
+#[allow(non_snake_case)]
+#[inline]
+pub fn rts_step_across<const NI: usize, const NJ: usize>(
+    filtered: &Gaussian<NI>,
+    predicted: &Gaussian<NJ>,
+    cross: &Matrix<NI, NJ>,
+    next_smoothed: &Gaussian<NJ>,
+) -> Result<Gaussian<NI>, MathError> {
+    let factor = SpdFactor::new_symmetric(predicted.cov(), "predicted covariance")?;
+    let G = factor.solve_right(cross);
     check_finite_matrix(&G, "smoother gain")?;
-    let dx: Vector<N> = next_smoothed.mean() - pred.mean();
+    let dx: Vector<NJ> = next_smoothed.mean() - predicted.mean();
     let mean = filtered.mean() + kernels::mul(&G, &dx);
-    let dP = next_smoothed.cov() - pred.cov();
+    let dP = next_smoothed.cov() - predicted.cov();
     let cov = filtered.cov() + kernels::congruence(&G, &dP);
     Gaussian::from_lower_triangle(mean, cov).map_err(|e| match e {
         MathError::NotPositiveDefinite { .. } => MathError::NotPositiveDefinite {

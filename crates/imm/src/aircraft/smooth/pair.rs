@@ -1,8 +1,7 @@
 //! One mode pair's transition across unequal state sizes, and its RTS step.
 
-use argus_core_math::{
-    Gaussian, MathError, Matrix, SpdFactor, Vector, check_finite_matrix, kernels,
-};
+use argus_core_math::{Gaussian, MathError, Matrix, SpdFactor, check_finite_matrix, kernels};
+use argus_filters::rts_step_across;
 
 /// Mode `i`'s filtered estimate (size `NI`) brought into mode `j`'s state (size `NJ`) by
 /// the forward pass's mixing map and predicted through model `j`: the prediction
@@ -43,29 +42,12 @@ impl<const NI: usize, const NJ: usize> PairTransition<NI, NJ> {
 /// # Errors
 /// [`MathError::NotPositiveDefinite`] naming the predicted or the smoothed covariance;
 /// [`MathError::NonFinite`] for a non-finite gain or result.
-#[allow(non_snake_case)]
 pub(super) fn pair_rts<const NI: usize, const NJ: usize>(
     filtered: &Gaussian<NI>,
     tr: &PairTransition<NI, NJ>,
     target: &Gaussian<NJ>,
 ) -> Result<Gaussian<NI>, MathError> {
-    let pred = tr.predicted();
-    let factor = SpdFactor::new_symmetric(pred.cov(), "predicted covariance")?;
-    let G = factor.solve_right(tr.cross());
-    check_finite_matrix(&G, "smoother gain")?;
-    let dx: Vector<NJ> = target.mean() - pred.mean();
-    let mean = filtered.mean() + kernels::mul(&G, &dx);
-    let dP = target.cov() - pred.cov();
-    let cov = filtered.cov() + kernels::congruence(&G, &dP);
-    Gaussian::from_lower_triangle(mean, cov).map_err(|e| match e {
-        MathError::NotPositiveDefinite { .. } => MathError::NotPositiveDefinite {
-            what: "smoothed covariance",
-        },
-        MathError::NonFinite { .. } => MathError::NonFinite {
-            what: "smoothed estimate",
-        },
-        other => other,
-    })
+    rts_step_across(filtered, tr.predicted(), tr.cross(), target)
 }
 
 /// The cross covariance of the full CT state with a prediction made from its kinematic
