@@ -1,7 +1,8 @@
 //! `argus track --smooth` / `--smooth-lag` for the aircraft IMM (`aircraft-imm`): the
 //! real binary on a simulated gimpo flight (one target, no clutter), the multi-target
-//! tracker's GNN track checked against the single-target `aircraft-imm` smoother of the
-//! same plots, and the smoothed error against the truth.
+//! tracker's GNN track (by scans, and by sectors of the rotating radar) checked row by
+//! row against the single-target `aircraft-imm` smoother of the same plots, and the
+//! smoothed error against the truth.
 
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
@@ -16,8 +17,15 @@ fn single() -> String {
     format!("{SENSOR}{ESTIMATOR}")
 }
 
-fn tracker() -> String {
-    format!("{SENSOR}{ESTIMATOR}\n[tracker]\nconfirm_m = 3\n")
+/// gimpo's radar as a rotating one (counter-clockwise, the beam east at t = 0, so north
+/// at 1.25 s; tests/track_aircraft.rs): the tracker then runs by sectors.
+const ROTATION: &str =
+    "revolution_period = 5.0\nrotation = \"counterclockwise\"\nnorth_time = 1.25\n";
+
+/// The tracker's configuration, its sensor `rotation` (nothing or [`ROTATION`]).
+fn tracker(rotation: &str) -> String {
+    let sensor = SENSOR.trim_end();
+    format!("{sensor}\n{rotation}\n{ESTIMATOR}\n[tracker]\nconfirm_m = 3\n")
 }
 
 /// The rows of the scene's one track (track 0), deleted row excluded.
@@ -30,14 +38,12 @@ fn the_track(csv: &str) -> Vec<Row> {
 }
 
 /// The worst relative difference between the tracker's smoothed columns and the
-/// single-target ones, rows matched from the end (the backward pass at a step depends
-/// only on that step and the later ones, so a first row the tracker lacks changes
-/// nothing after it).
+/// single-target ones, row by row: both start at the second plot (the two-point start's
+/// estimate, the tracker's initiation row) and take every later plot.
 fn worst_difference(multi: &[Row], single: &[Row]) -> f64 {
-    assert!(single.len() >= multi.len() && single.len() - multi.len() <= 1);
-    let skipped = single.len() - multi.len();
+    assert_eq!(multi.len(), single.len());
     let mut worst = 0.0_f64;
-    for (m, s) in multi.iter().zip(&single[skipped..]) {
+    for (m, s) in multi.iter().zip(single) {
         assert_eq!(m["t"], s["t"]);
         let s_sigma = |k: &str| num(s, k).sqrt();
         let pairs = [
@@ -65,11 +71,23 @@ fn a_gnn_aircraft_track_smooths_as_the_single_target_aircraft_imm() {
     let d = dir.path();
     simulate_gimpo(d, 4);
     let plots = d.join("sim.csv");
-    for flags in [&["--smooth"][..], &["--smooth-lag", "3"][..]] {
-        let (code, err, multi) = track(d, &tracker(), &plots, flags);
-        assert_eq!(code, Some(0), "{flags:?}: {err}");
+    let cases = [
+        ("", &["--smooth"][..]),
+        ("", &["--smooth-lag", "3"][..]),
+        (ROTATION, &["--smooth"][..]),
+        (ROTATION, &["--smooth-lag", "3"][..]),
+    ];
+    for (rotation, flags) in cases {
+        let path = if rotation.is_empty() {
+            "scan"
+        } else {
+            "sectors"
+        };
+        let case = (path, flags);
+        let (code, err, multi) = track(d, &tracker(rotation), &plots, flags);
+        assert_eq!(code, Some(0), "{case:?}: {err}");
         let (code, err, single) = track(d, &single(), &plots, flags);
-        assert_eq!(code, Some(0), "{flags:?}: {err}");
+        assert_eq!(code, Some(0), "{case:?}: {err}");
         let header = single.lines().next().unwrap();
         assert!(
             header.ends_with(
@@ -90,8 +108,8 @@ fn a_gnn_aircraft_track_smooths_as_the_single_target_aircraft_imm() {
         // 1e-9 relative: the same arithmetic on the same posteriors (the tracker's GNN
         // track is the single-target estimator row by row, tests/track_aircraft.rs),
         // printed at full precision.
-        println!("{flags:?}: worst relative difference {worst:e}");
-        assert!(worst < 1e-9, "{flags:?}: {worst:e}");
+        println!("{case:?}: worst relative difference {worst:e}");
+        assert!(worst < 1e-9, "{case:?}: {worst:e}");
         for r in &s {
             let mu: f64 = ["mu_1s", "mu_2s", "mu_3s"].iter().map(|k| num(r, k)).sum();
             // Three printed probabilities of a normalised distribution.

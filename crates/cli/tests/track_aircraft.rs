@@ -384,15 +384,15 @@ fn tracker_equals_single_target(sensor: &str) {
     // Every plot is assigned, so the track is the single-target estimator, row by row
     // (the tracker starts from the same converted plots' two-point estimate): equal to
     // round-off (1e-9 relative).
-    // A rotating sensor's rows are its updates and misses: the initiation row (the
-    // track's second plot) is not among them, so compare from the end.
+    // A rotating sensor's rows are its initiation row (at the track's second plot, as
+    // the single-target estimator's first row) and then its updates and misses: the
+    // same rows as the single-target estimator's, scan or sectors.
     let single = track(d, &example(), "sim.csv", "single.csv").2;
     let (sh, srows) = table(&single);
-    let skipped = srows.len() - rows.len();
-    assert!(skipped <= 1, "{} rows against {}", rows.len(), srows.len());
+    assert_eq!(rows.len(), srows.len(), "rows against the single-target's");
     let (x, sx) = (col(&head, "x"), col(&sh, "x"));
     let (t, st) = (col(&head, "t"), col(&sh, "t"));
-    for (r, s) in rows.iter().zip(&srows[skipped..]) {
+    for (r, s) in rows.iter().zip(&srows) {
         assert_eq!(r[t].to_bits(), s[st].to_bits(), "row times");
         for k in 0..4 {
             let (a, b) = (r[x + k], s[sx + k]);

@@ -228,8 +228,8 @@ impl<'a> Tally<'a> {
     }
 
     /// Counts one report (a scan or a sector) and writes its rows: every track of a
-    /// synchronous scan; the tracks a sector visited (updated or missed) and those it
-    /// deleted. In id order (live tracks are in id order; a deleted one goes in its
+    /// synchronous scan; the tracks a sector visited (updated or missed), initiated (at
+    /// the second plot's time, as a scan's first row of a track) and deleted. In id order (live tracks are in id order; a deleted one goes in its
     /// place).
     pub(super) fn record(&mut self, tracker: &mut Tracker, report: &ScanReport) {
         self.scans += 1;
