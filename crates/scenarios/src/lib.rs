@@ -34,6 +34,7 @@ mod context;
 mod error;
 pub mod estimator;
 mod params;
+mod polar_scene;
 mod registry;
 mod report;
 mod scenario;
