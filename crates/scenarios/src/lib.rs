@@ -38,6 +38,7 @@ mod polar_scene;
 mod registry;
 mod report;
 mod scenario;
+mod tracker_params;
 
 mod bias_32;
 mod clutter;
