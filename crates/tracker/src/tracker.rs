@@ -11,12 +11,12 @@ use crate::grid::Grid;
 use crate::plot::{ScanPoint, SensorModel};
 use crate::state::SavedState;
 use crate::{
-    AssociationConfig, DeletionReason, Plot, SensorId, Track, TrackId, TrackStatus, TrackerConfig,
-    TrackerError,
+    DeletionReason, Plot, SensorId, Track, TrackId, TrackStatus, TrackerConfig, TrackerError,
 };
 
 mod associate;
 mod initiate;
+mod predict;
 mod sector;
 
 use sector::{Role, SectorState};
@@ -350,62 +350,22 @@ impl Tracker {
         };
         self.time = Some(time);
         self.latest = Some(self.latest.map_or(time, |l| l.max(time)));
-        self.grid.rebuild(self.points.iter().map(|p| p.position));
-        self.used.clear();
-        self.used.resize(n_plots, false);
+        self.index_points();
         // Largest plot variance per axis, for the grid query boxes.
-        let r_max = self.points.iter().fold([0.0_f64; 2], |acc, p| {
-            [
-                acc[0].max(p.covariance[(0, 0)]),
-                acc[1].max(p.covariance[(1, 1)]),
-            ]
-        });
+        let r_max = associate::r_max(&self.points);
         let polar_sensor = self.sensors[self.scan_sensor].polar;
-        // EKF on polar plots: each track's measurement prediction in (r, θ) (left empty
-        // otherwise, so the KF path does not touch it).
-        let ekf_polar = self.est.gates_polar()
-            && polar_sensor.is_some()
-            && self.points.iter().any(|p| p.polar.is_some());
+        // EKF on polar plots: each track's measurement prediction in (r, θ).
+        let ekf_polar = self.ekf_polar(polar_sensor.as_ref());
 
         // 1. Predict (a multi-IMM track's state becomes its prediction).
-        self.predicted.clear();
-        self.imm_predicted.clear();
-        self.polar_mp.clear();
-        for track in &mut self.tracks {
-            let dt = time - track.time;
-            let pred = self.est.predict(
-                &mut track.state,
-                &track.estimate,
-                dt,
-                &mut self.imm_predicted,
-            );
-            if ekf_polar {
-                let mp = pred
-                    .as_ref()
-                    .and_then(|p| self.est.polar_prediction(p, polar_sensor.as_ref()));
-                self.polar_mp.push(mp);
-            }
-            self.predicted.push(pred);
+        self.clear_predictions();
+        for k in 0..self.tracks.len() {
+            let dt = time - self.tracks[k].time;
+            self.predict_track(k, dt, ekf_polar, polar_sensor.as_ref());
         }
 
         // 2–3. Gate and assign, confirmed tracks first, then tentative ones.
-        self.assigned.clear();
-        self.assigned.resize(self.tracks.len(), None);
-        self.jpda.iter_mut().for_each(Vec::clear);
-        self.jpda.resize(self.tracks.len(), Vec::new());
-        self.jpda_dl.clear();
-        self.jpda_dl.resize(self.tracks.len(), None);
-        if let AssociationConfig::Jpda {
-            p_detection,
-            clutter_density,
-            max_exact_events,
-        } = self.config.association
-        {
-            self.associate_jpda(r_max, p_detection, clutter_density, max_exact_events);
-        } else {
-            self.associate(TrackStatus::Confirmed, r_max);
-        }
-        self.associate(TrackStatus::Tentative, r_max);
+        self.associate_all(r_max);
 
         // 4. Update, count, confirm, delete.
         for (k, track) in self.tracks.iter_mut().enumerate() {

@@ -19,6 +19,7 @@ mod rows;
 mod schema;
 mod single;
 mod single_aircraft;
+mod single_dim;
 mod single_imm;
 mod smooth;
 mod smooth_aircraft;

@@ -4,18 +4,17 @@
 //! 2-D. One row per estimate.
 
 use argus_core_math::Gaussian;
-use argus_filters::{SmoothingFilter, two_point_cv2, two_point_cv3};
+use argus_filters::SmoothingFilter;
 use argus_sensors::Measurement;
 
 use super::rows::{Column, Point, TrackRows};
+use super::single_dim::{DIM2, DIM3, Dim};
 use super::smooth;
 use super::spec::Estimator;
-use super::start::{Converted, Ctx, TwoPoint, two_point};
+use super::start::{Ctx, two_point};
 use super::{single_aircraft, single_imm};
 use crate::error::CliError;
-use crate::estimator::{
-    cv_ekf, cv_kf, cv3_ekf, cv3_kf, polar, position, position3, spherical, step,
-};
+use crate::estimator::{cv_ekf, cv_kf, cv3_ekf, cv3_kf, polar, spherical, step};
 use crate::plotfile::FilePlot;
 
 /// Runs `estimator` over `plots` (in file order, already checked by `plotfile`).
@@ -32,41 +31,23 @@ pub(super) fn run(
     match (estimator, three_d) {
         (Estimator::KfConverted(sa), false) => {
             let f = cv_kf(*sa)?;
-            track_loop(
-                ctx,
-                plots,
-                |p| ctx.convert2(p),
-                two_point_cv2,
-                &f,
-                |x, dt, p| {
-                    let (z, r) = ctx.convert2(p)?;
-                    Ok(step(&f, x, dt, &position(r)?, &z)
-                        .map_err(ctx.filter_error(p))?
-                        .0)
-                },
-            )
+            track_loop(ctx, plots, &DIM2, &f, |x, dt, p| {
+                DIM2.converted_step(ctx, &f, x, dt, p)
+            })
         }
         (Estimator::Ekf(sa), false) => {
             let f = cv_ekf(*sa)?;
-            track_loop(
-                ctx,
-                plots,
-                |p| ctx.convert2(p),
-                two_point_cv2,
-                &f,
-                |x, dt, p| {
-                    let post = if let Measurement::Polar(z) = p.measurement() {
-                        let s = ctx.sensor(p)?;
-                        let (sr, sa) = ctx.polar_sigmas(s)?;
-                        let m = polar([s.position[0], s.position[1]], sr, sa)?;
-                        step(&f, x, dt, &m, &z.to_vector())
-                    } else {
-                        let (z, r) = ctx.convert2(p)?;
-                        step(&f, x, dt, &position(r)?, &z)
-                    };
-                    Ok(post.map_err(ctx.filter_error(p))?.0)
-                },
-            )
+            track_loop(ctx, plots, &DIM2, &f, |x, dt, p| {
+                let Measurement::Polar(z) = p.measurement() else {
+                    return DIM2.converted_step(ctx, &f, x, dt, p);
+                };
+                let s = ctx.sensor(p)?;
+                let (sr, sa) = ctx.polar_sigmas(s)?;
+                let m = polar([s.position[0], s.position[1]], sr, sa)?;
+                Ok(step(&f, x, dt, &m, &z.to_vector())
+                    .map_err(ctx.filter_error(p))?
+                    .0)
+            })
         }
         (Estimator::Imm(spec), false) => single_imm::imm(ctx, spec, plots),
         (Estimator::MultiImm(spec, multi), false) => {
@@ -86,57 +67,38 @@ pub(super) fn run(
         }
         (Estimator::KfConverted(sa), true) => {
             let f = cv3_kf(*sa)?;
-            track_loop(
-                ctx,
-                plots,
-                |p| ctx.convert3(p),
-                two_point_cv3,
-                &f,
-                |x, dt, p| {
-                    let (z, r) = ctx.convert3(p)?;
-                    Ok(step(&f, x, dt, &position3(r)?, &z)
-                        .map_err(ctx.filter_error(p))?
-                        .0)
-                },
-            )
+            track_loop(ctx, plots, &DIM3, &f, |x, dt, p| {
+                DIM3.converted_step(ctx, &f, x, dt, p)
+            })
         }
         (Estimator::Ekf(sa), true) => {
             let f = cv3_ekf(*sa)?;
-            track_loop(
-                ctx,
-                plots,
-                |p| ctx.convert3(p),
-                two_point_cv3,
-                &f,
-                |x, dt, p| {
-                    let post = if let Measurement::Spherical(z) = p.measurement() {
-                        let s = ctx.sensor(p)?;
-                        let m = spherical(s.position, ctx.spherical_sigmas(s)?)?;
-                        step(&f, x, dt, &m, &z.to_vector())
-                    } else {
-                        let (z, r) = ctx.convert3(p)?;
-                        step(&f, x, dt, &position3(r)?, &z)
-                    };
-                    Ok(post.map_err(ctx.filter_error(p))?.0)
-                },
-            )
+            track_loop(ctx, plots, &DIM3, &f, |x, dt, p| {
+                let Measurement::Spherical(z) = p.measurement() else {
+                    return DIM3.converted_step(ctx, &f, x, dt, p);
+                };
+                let s = ctx.sensor(p)?;
+                let m = spherical(s.position, ctx.spherical_sigmas(s)?)?;
+                Ok(step(&f, x, dt, &m, &z.to_vector())
+                    .map_err(ctx.filter_error(p))?
+                    .0)
+            })
         }
     }
 }
 
-/// The KF / EKF loop: the two-point start on the first two plots, then one predict +
-/// update per plot (`update(estimate, dt, plot)`), one row per estimate; with
+/// The KF / EKF loop: the two-point start of `dim` on the first two plots, then one
+/// predict + update per plot (`update(estimate, dt, plot)`), one row per estimate; with
 /// `ctx.smoothing`, the rows smoothed by the RTS smoother of `filter` (the estimator's own
 /// prediction, [`smooth::rts_rows`]).
 fn track_loop<const D: usize, const N: usize, F: SmoothingFilter<N>>(
     ctx: &Ctx<'_>,
     plots: &[FilePlot],
-    convert: impl Fn(&FilePlot) -> Result<Converted<D>, CliError>,
-    init: TwoPoint<D, N>,
+    dim: &Dim<D, N>,
     filter: &F,
     update: impl Fn(&Gaussian<N>, f64, &FilePlot) -> Result<Gaussian<N>, CliError>,
 ) -> Result<TrackRows, CliError> {
-    let start = two_point(ctx, plots, convert, init)?;
+    let start = two_point(ctx, plots, |p| (dim.convert)(ctx, p), dim.init)?;
     let mut est: Vec<(f64, Gaussian<N>)> = Vec::with_capacity(start.rest.len() + 1);
     let (mut x, mut t) = (start.estimate, start.second.time());
     est.push((t, x));

@@ -4,6 +4,7 @@ use argus_core_math::Gaussian;
 use argus_filters::{SmoothError, rts_step};
 
 use super::likelihood::BackwardLikelihood;
+use super::record::backward_pass;
 use super::{ImmSmoothError, ImmStep};
 use crate::MarkovMatrix;
 use crate::markov::log_sum_exp;
@@ -36,32 +37,6 @@ pub struct ImmSmoothed<const N: usize, const R: usize> {
     pub log_mode_probabilities: [f64; R],
     /// The combined smoothed estimate (eq 7).
     pub combined: Gaussian<N>,
-}
-
-/// Checks the sequence: times finite and increasing, a transition into every later step.
-fn validate<const N: usize, const R: usize>(steps: &[ImmStep<N, R>]) -> Result<(), SmoothError> {
-    let first = steps.first().ok_or(SmoothError::Empty)?;
-    if !first.time().is_finite() {
-        return Err(SmoothError::TimeNotIncreasing {
-            step: 0,
-            prev: f64::NEG_INFINITY,
-            now: first.time(),
-        });
-    }
-    for (k, pair) in steps.windows(2).enumerate() {
-        let (prev, now) = (pair[0].time(), pair[1].time());
-        if !(now > prev && now.is_finite()) {
-            return Err(SmoothError::TimeNotIncreasing {
-                step: k + 1,
-                prev,
-                now,
-            });
-        }
-        if pair[1].transition().is_none() {
-            return Err(SmoothError::MissingTransition { step: k + 1 });
-        }
-    }
-    Ok(())
 }
 
 /// The smoothed estimate at the last step: the filter's.
@@ -227,21 +202,7 @@ pub fn imm_smooth<const N: usize, const R: usize>(
     weights: PairWeights,
     steps: &[ImmStep<N, R>],
 ) -> Result<Vec<ImmSmoothed<N, R>>, ImmSmoothError> {
-    validate(steps)?;
-    let n = steps.len();
-    let mut out = Vec::with_capacity(n);
-    out.push(last(&steps[n - 1], n - 1)?);
-    for k in (0..n - 1).rev() {
-        let s = step_back(
-            markov,
-            weights,
-            &steps[k],
-            &steps[k + 1],
-            &out[out.len() - 1],
-            k,
-        )?;
-        out.push(s);
-    }
-    out.reverse();
-    Ok(out)
+    backward_pass(steps, last, |step, next, later, k| {
+        step_back(markov, weights, step, next, later, k)
+    })
 }

@@ -128,9 +128,11 @@ mod error;
 #[cfg(feature = "gibbs")]
 pub mod gibbs;
 mod likelihood;
+mod record;
 mod track;
 
 pub use backward::{ImmSmoothed, PairWeights, imm_smooth};
 pub use error::ImmSmoothError;
 pub(crate) use likelihood::BackwardLikelihood;
+pub(crate) use record::{Record, RecordedStep, backward_pass};
 pub use track::{ImmStep, ImmTrack, ImmTransition};

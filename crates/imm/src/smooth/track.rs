@@ -1,11 +1,12 @@
 //! The record of an IMM forward pass for smoothing.
 
 use argus_core_math::{Matrix, Vector};
-use argus_filters::{SmoothError, SmoothingFilter, Transition};
+use argus_filters::{SmoothingFilter, Transition};
 use argus_sensors::MeasurementModel;
 
 use super::ImmSmoothError;
 use super::backward::{ImmSmoothed, PairWeights, imm_smooth};
+use super::record::{Record, RecordedStep};
 use crate::markov::log_sum_exp;
 use crate::{Imm, ImmError, ImmEstimate, ImmUpdate, MarkovMatrix};
 
@@ -62,6 +63,16 @@ impl<const N: usize, const R: usize> ImmStep<N, R> {
     }
 }
 
+impl<const N: usize, const R: usize> RecordedStep for ImmStep<N, R> {
+    fn time(&self) -> f64 {
+        self.time
+    }
+
+    fn has_transition(&self) -> bool {
+        self.transition.is_some()
+    }
+}
+
 /// An IMM forward pass recorded for smoothing ([`crate::smooth`] for the equations).
 ///
 /// [`ImmTrack::step`] runs one IMM cycle and records it; [`ImmTrack::push`] records a
@@ -71,8 +82,7 @@ impl<const N: usize, const R: usize> ImmStep<N, R> {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ImmTrack<const N: usize, const R: usize> {
     markov: MarkovMatrix<R>,
-    steps: Vec<ImmStep<N, R>>,
-    failure: Option<ImmSmoothError>,
+    record: Record<ImmStep<N, R>>,
 }
 
 impl<const N: usize, const R: usize> ImmTrack<N, R> {
@@ -80,34 +90,25 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
     /// `initial` (step 0).
     ///
     /// # Errors
-    /// [`SmoothError::TimeNotIncreasing`] for a non-finite `time`.
+    /// [`argus_filters::SmoothError::TimeNotIncreasing`] for a non-finite `time`.
     pub fn new(
         markov: MarkovMatrix<R>,
         time: f64,
         initial: ImmEstimate<N, R>,
     ) -> Result<Self, ImmSmoothError> {
-        if !time.is_finite() {
-            return Err(SmoothError::TimeNotIncreasing {
-                step: 0,
-                prev: f64::NEG_INFINITY,
-                now: time,
-            }
-            .into());
-        }
         Ok(Self {
             markov,
-            steps: vec![ImmStep {
+            record: Record::new(ImmStep {
                 time,
                 transition: None,
                 filtered: initial,
-            }],
-            failure: None,
+            })?,
         })
     }
 
     /// Room for `additional` more steps (no reallocation while recording them).
     pub fn reserve(&mut self, additional: usize) {
-        self.steps.reserve(additional);
+        self.record.reserve(additional);
     }
 
     /// The transition matrix.
@@ -119,45 +120,19 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
     /// The recorded steps.
     #[must_use]
     pub fn steps(&self) -> &[ImmStep<N, R>] {
-        &self.steps
+        self.record.steps()
     }
 
     /// The latest posterior.
     #[must_use]
     pub fn latest(&self) -> &ImmEstimate<N, R> {
-        // Never empty: `new` pushes the first step and nothing removes one.
-        &self.steps[self.steps.len() - 1].filtered
+        &self.record.latest().filtered
     }
 
     /// The failure recorded, if any.
     #[must_use]
     pub fn failure(&self) -> Option<&ImmSmoothError> {
-        self.failure.as_ref()
-    }
-
-    fn fail(&mut self, e: ImmSmoothError) -> ImmSmoothError {
-        self.failure = Some(e.clone());
-        e
-    }
-
-    /// Checks `time` against the latest step; returns `(step, dt)`.
-    fn next_interval(&mut self, time: f64) -> Result<(usize, f64), ImmSmoothError> {
-        if let Some(e) = &self.failure {
-            return Err(e.clone());
-        }
-        let step = self.steps.len();
-        let prev = self.steps[step - 1].time;
-        if !(time > prev && time.is_finite()) {
-            return Err(self.fail(
-                SmoothError::TimeNotIncreasing {
-                    step,
-                    prev,
-                    now: time,
-                }
-                .into(),
-            ));
-        }
-        Ok((step, time - prev))
+        self.record.failure()
     }
 
     /// Records `estimate`, the posterior at `time` of `imm` run from the latest step:
@@ -165,7 +140,7 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
     /// its cross covariance (`R²` predictions), and `ln μ̄`.
     ///
     /// # Errors
-    /// [`SmoothError::TimeNotIncreasing`] (inside [`ImmSmoothError::Sequence`]) or
+    /// [`argus_filters::SmoothError::TimeNotIncreasing`] (inside [`ImmSmoothError::Sequence`]) or
     /// [`ImmSmoothError::ForwardFailed`] when a mode's prediction fails; both recorded.
     pub fn push<F: SmoothingFilter<N>>(
         &mut self,
@@ -173,9 +148,9 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
         time: f64,
         estimate: ImmEstimate<N, R>,
     ) -> Result<(), ImmSmoothError> {
-        let (step, dt) = self.next_interval(time)?;
+        let (step, dt) = self.record.next_interval(time)?;
         let transition = self.transition(imm, step, dt)?;
-        self.steps.push(ImmStep {
+        self.record.push(ImmStep {
             time,
             transition: Some(transition),
             filtered: estimate,
@@ -204,7 +179,7 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
                 match f.predict_with_cross(g, dt) {
                     Ok(tr) => *out = tr,
                     Err(source) => {
-                        return Err(self.fail(ImmSmoothError::ForwardFailed {
+                        return Err(self.record.fail(ImmSmoothError::ForwardFailed {
                             step,
                             source: ImmError::Filter { mode, source },
                         }));
@@ -235,13 +210,17 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
         meas: &Me,
         z: &Vector<M>,
     ) -> Result<ImmUpdate<N, R>, ImmSmoothError> {
-        let (step, dt) = self.next_interval(time)?;
+        let (step, dt) = self.record.next_interval(time)?;
         let upd = match imm.step(self.latest(), dt, meas, z) {
             Ok(u) => u,
-            Err(source) => return Err(self.fail(ImmSmoothError::ForwardFailed { step, source })),
+            Err(source) => {
+                return Err(self
+                    .record
+                    .fail(ImmSmoothError::ForwardFailed { step, source }));
+            }
         };
         let transition = self.transition(imm, step, dt)?;
-        self.steps.push(ImmStep {
+        self.record.push(ImmStep {
             time,
             transition: Some(transition),
             filtered: upd.estimate,
@@ -266,9 +245,6 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
         &self,
         weights: PairWeights,
     ) -> Result<Vec<ImmSmoothed<N, R>>, ImmSmoothError> {
-        if let Some(e) = &self.failure {
-            return Err(e.clone());
-        }
-        imm_smooth(&self.markov, weights, &self.steps)
+        imm_smooth(&self.markov, weights, self.record.to_smooth()?)
     }
 }

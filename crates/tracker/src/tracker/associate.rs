@@ -3,12 +3,43 @@
 use argus_core_math::{Gaussian, Vector};
 
 use super::Tracker;
-use crate::TrackStatus;
 use crate::assign::{clusters, gnn};
 use crate::estimator::{Estimator, TrackGate};
 use crate::jpda::marginals;
+use crate::plot::ScanPoint;
+use crate::{AssociationConfig, TrackStatus};
 
 impl Tracker {
+    /// Indexes `self.points` in the grid and marks every plot unused.
+    pub(super) fn index_points(&mut self) {
+        self.grid.rebuild(self.points.iter().map(|p| p.position));
+        self.used.clear();
+        self.used.resize(self.points.len(), false);
+    }
+
+    /// Gates and assigns the plots of a scan or a sector (the predictions made): the
+    /// per-track results reset, the confirmed tracks by JPDA or GNN as configured, then
+    /// the tentative tracks by GNN on the plots left.
+    pub(super) fn associate_all(&mut self, r_max: [f64; 2]) {
+        self.assigned.clear();
+        self.assigned.resize(self.tracks.len(), None);
+        self.jpda.iter_mut().for_each(Vec::clear);
+        self.jpda.resize(self.tracks.len(), Vec::new());
+        self.jpda_dl.clear();
+        self.jpda_dl.resize(self.tracks.len(), None);
+        if let AssociationConfig::Jpda {
+            p_detection,
+            clutter_density,
+            max_exact_events,
+        } = self.config.association
+        {
+            self.associate_jpda(r_max, p_detection, clutter_density, max_exact_events);
+        } else {
+            self.associate(TrackStatus::Confirmed, r_max);
+        }
+        self.associate(TrackStatus::Tentative, r_max);
+    }
+
     /// How track `k`, predicted at `pred`, gates: per mode for an IMM or aircraft-IMM
     /// track, with the EKF's polar prediction when it has one.
     fn track_gate<'a>(&'a self, k: usize, pred: &'a Gaussian<4>) -> TrackGate<'a> {
@@ -160,6 +191,16 @@ impl Tracker {
             self.assigned[k] = w.iter().max_by(|a, b| a.1.total_cmp(&b.1)).map(|&(j, _)| j);
         }
     }
+}
+
+/// The largest plot variance per axis of `points`, for the grid query boxes.
+pub(super) fn r_max(points: &[ScanPoint]) -> [f64; 2] {
+    points.iter().fold([0.0_f64; 2], |acc, p| {
+        [
+            acc[0].max(p.covariance[(0, 0)]),
+            acc[1].max(p.covariance[(1, 1)]),
+        ]
+    })
 }
 
 /// Whether `p` lies in the box `centre ± half`.

@@ -9,8 +9,8 @@ use super::{ScanReport, Tracker};
 use crate::estimator::Estimator;
 use crate::track::Look;
 use crate::{
-    AssociationConfig, DeletionReason, EstimatorConfig, Plot, Rotation, SensorId, Track,
-    TrackStatus, TrackerConfig, TrackerError,
+    DeletionReason, EstimatorConfig, Plot, Rotation, SensorId, Track, TrackStatus, TrackerConfig,
+    TrackerError,
 };
 
 /// One rotating sensor's sectors: the open one and its buffered plots.
@@ -249,12 +249,7 @@ impl Tracker {
         let sensor = self.sensors[s];
         let n_plots = self.points.len();
         let gamma = self.gate.gamma();
-        let r_max = self.points.iter().fold([0.0_f64; 2], |acc, p| {
-            [
-                acc[0].max(p.covariance[(0, 0)]),
-                acc[1].max(p.covariance[(1, 1)]),
-            ]
-        });
+        let r_max = super::associate::r_max(&self.points);
         let sigma_a = sweep_sigma_a(&self.config);
 
         // Which tracks the beam looks at, and when.
@@ -296,23 +291,17 @@ impl Tracker {
             ..ScanReport::new(t_close, sensor.id)
         };
         self.time = Some(t_close);
-        self.grid.rebuild(self.points.iter().map(|p| p.position));
-        self.used.clear();
-        self.used.resize(n_plots, false);
+        self.index_points();
         let polar_sensor = sensor.polar;
-        let ekf_polar = self.est.gates_polar()
-            && polar_sensor.is_some()
-            && self.points.iter().any(|p| p.polar.is_some());
+        let ekf_polar = self.ekf_polar(polar_sensor.as_ref());
         let is_imm = matches!(self.est, Estimator::Imm(_));
         // The aircraft IMM's state becomes its prediction: keep the state before it.
         self.saved.clear();
 
         // Predict each looked-at track to its crossing time (never backwards).
-        self.predicted.clear();
-        self.imm_predicted.clear();
-        self.polar_mp.clear();
-        for (track, role) in self.tracks.iter_mut().zip(&self.roles) {
-            let Role::Look { time, .. } = *role else {
+        self.clear_predictions();
+        for k in 0..self.tracks.len() {
+            let Role::Look { time, .. } = self.roles[k] else {
                 self.saved.push(None);
                 self.predicted.push(None);
                 if is_imm {
@@ -323,41 +312,13 @@ impl Tracker {
                 }
                 continue;
             };
-            self.saved.push(track.state.save());
-            let dt = (time - track.time).max(0.0);
-            let pred = self.est.predict(
-                &mut track.state,
-                &track.estimate,
-                dt,
-                &mut self.imm_predicted,
-            );
-            if ekf_polar {
-                let mp = pred
-                    .as_ref()
-                    .and_then(|p| self.est.polar_prediction(p, polar_sensor.as_ref()));
-                self.polar_mp.push(mp);
-            }
-            self.predicted.push(pred);
+            self.saved.push(self.tracks[k].state.save());
+            let dt = (time - self.tracks[k].time).max(0.0);
+            self.predict_track(k, dt, ekf_polar, polar_sensor.as_ref());
         }
 
         // One global association over the sector, as in a scan.
-        self.assigned.clear();
-        self.assigned.resize(self.tracks.len(), None);
-        self.jpda.iter_mut().for_each(Vec::clear);
-        self.jpda.resize(self.tracks.len(), Vec::new());
-        self.jpda_dl.clear();
-        self.jpda_dl.resize(self.tracks.len(), None);
-        if let AssociationConfig::Jpda {
-            p_detection,
-            clutter_density,
-            max_exact_events,
-        } = self.config.association
-        {
-            self.associate_jpda(r_max, p_detection, clutter_density, max_exact_events);
-        } else {
-            self.associate(TrackStatus::Confirmed, r_max);
-        }
-        self.associate(TrackStatus::Tentative, r_max);
+        self.associate_all(r_max);
 
         // Update (at the plot's own time), miss (swept, nothing assigned) or carry.
         for (k, track) in self.tracks.iter_mut().enumerate() {

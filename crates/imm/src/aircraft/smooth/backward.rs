@@ -8,7 +8,7 @@ use super::pair::pair_rts;
 use super::track::{AircraftStep, AircraftTransition};
 use crate::aircraft::mixing::kinematic_marginal;
 use crate::markov::log_sum_exp;
-use crate::smooth::BackwardLikelihood;
+use crate::smooth::{BackwardLikelihood, backward_pass};
 use crate::{ImmSmoothError, MarkovMatrix, PairWeights};
 
 /// The smoothed aircraft-IMM estimate of one step.
@@ -34,34 +34,6 @@ impl<const C: usize, const R: usize> AircraftSmoothed<C, R> {
     pub fn turn_rate(&self) -> (f64, f64) {
         (self.ct.mean()[4], self.ct.cov()[(4, 4)].sqrt())
     }
-}
-
-/// Checks the sequence: times finite and increasing, a transition into every later step.
-fn validate<const C: usize, const R: usize>(
-    steps: &[AircraftStep<C, R>],
-) -> Result<(), SmoothError> {
-    let first = steps.first().ok_or(SmoothError::Empty)?;
-    if !first.time().is_finite() {
-        return Err(SmoothError::TimeNotIncreasing {
-            step: 0,
-            prev: f64::NEG_INFINITY,
-            now: first.time(),
-        });
-    }
-    for (k, pair) in steps.windows(2).enumerate() {
-        let (prev, now) = (pair[0].time(), pair[1].time());
-        if !(now > prev && now.is_finite()) {
-            return Err(SmoothError::TimeNotIncreasing {
-                step: k + 1,
-                prev,
-                now,
-            });
-        }
-        if pair[1].transition().is_none() {
-            return Err(SmoothError::MissingTransition { step: k + 1 });
-        }
-    }
-    Ok(())
 }
 
 fn backward(step: usize, mode: Option<usize>) -> impl Fn(MathError) -> ImmSmoothError {
@@ -265,21 +237,7 @@ pub fn aircraft_smooth<const C: usize, const R: usize>(
     weights: PairWeights,
     steps: &[AircraftStep<C, R>],
 ) -> Result<Vec<AircraftSmoothed<C, R>>, ImmSmoothError> {
-    validate(steps)?;
-    let n = steps.len();
-    let mut out = Vec::with_capacity(n);
-    out.push(last(&steps[n - 1], n - 1)?);
-    for k in (0..n - 1).rev() {
-        let s = step_back(
-            markov,
-            weights,
-            &steps[k],
-            &steps[k + 1],
-            &out[out.len() - 1],
-            k,
-        )?;
-        out.push(s);
-    }
-    out.reverse();
-    Ok(out)
+    backward_pass(steps, last, |step, next, later, k| {
+        step_back(markov, weights, step, next, later, k)
+    })
 }

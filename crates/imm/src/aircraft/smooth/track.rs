@@ -8,6 +8,7 @@ use super::pair::{PairTransition, ct_to_cv_cross};
 use crate::aircraft::mixing::{augmented, kinematic_marginal};
 use crate::aircraft::{AircraftEstimate, AircraftImm, AircraftRadar, AircraftUpdate};
 use crate::markov::log_sum_exp;
+use crate::smooth::{Record, RecordedStep};
 use crate::{ImmError, ImmSmoothError, MarkovMatrix, PairWeights};
 
 /// The transition into a step (module docs, forward record): every mode's filtered
@@ -87,6 +88,16 @@ impl<const C: usize, const R: usize> AircraftStep<C, R> {
     }
 }
 
+impl<const C: usize, const R: usize> RecordedStep for AircraftStep<C, R> {
+    fn time(&self) -> f64 {
+        self.time
+    }
+
+    fn has_transition(&self) -> bool {
+        self.transition.is_some()
+    }
+}
+
 /// The transition from the posterior `prev` over `dt` (module docs, forward record):
 /// the mixing maps of [`AircraftImm`] (identity, the CT marginal, the augmentation with
 /// the IMM's own [`crate::Augmentation`] of `prev`'s CT mode), then each model's
@@ -162,8 +173,7 @@ where
 #[derive(Debug, Clone, PartialEq)]
 pub struct AircraftTrack<const C: usize, const R: usize> {
     markov: MarkovMatrix<R>,
-    steps: Vec<AircraftStep<C, R>>,
-    failure: Option<ImmSmoothError>,
+    record: Record<AircraftStep<C, R>>,
 }
 
 impl<const C: usize, const R: usize> AircraftTrack<C, R> {
@@ -177,22 +187,13 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
         time: f64,
         initial: AircraftEstimate<C, R>,
     ) -> Result<Self, ImmSmoothError> {
-        if !time.is_finite() {
-            return Err(SmoothError::TimeNotIncreasing {
-                step: 0,
-                prev: f64::NEG_INFINITY,
-                now: time,
-            }
-            .into());
-        }
         Ok(Self {
             markov,
-            steps: vec![AircraftStep {
+            record: Record::new(AircraftStep {
                 time,
                 transition: None,
                 filtered: initial,
-            }],
-            failure: None,
+            })?,
         })
     }
 
@@ -223,7 +224,7 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
             return Err(SmoothError::Empty.into());
         };
         let mut track = Self::new(*imm.markov(), *t0, *e0)?;
-        track.steps.reserve(times.len() - 1);
+        track.record.reserve(times.len() - 1);
         for (t, e) in times.iter().zip(estimates).skip(1) {
             track.push(imm, *t, *e)?;
         }
@@ -239,45 +240,19 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
     /// The recorded steps.
     #[must_use]
     pub fn steps(&self) -> &[AircraftStep<C, R>] {
-        &self.steps
+        self.record.steps()
     }
 
     /// The latest posterior.
     #[must_use]
     pub fn latest(&self) -> &AircraftEstimate<C, R> {
-        // Never empty: `new` pushes the first step and nothing removes one.
-        &self.steps[self.steps.len() - 1].filtered
+        &self.record.latest().filtered
     }
 
     /// The failure recorded, if any.
     #[must_use]
     pub fn failure(&self) -> Option<&ImmSmoothError> {
-        self.failure.as_ref()
-    }
-
-    fn fail(&mut self, e: ImmSmoothError) -> ImmSmoothError {
-        self.failure = Some(e.clone());
-        e
-    }
-
-    /// Checks `time` against the latest step; returns `(step, dt)`.
-    fn next_interval(&mut self, time: f64) -> Result<(usize, f64), ImmSmoothError> {
-        if let Some(e) = &self.failure {
-            return Err(e.clone());
-        }
-        let step = self.steps.len();
-        let prev = self.steps[step - 1].time;
-        if !(time > prev && time.is_finite()) {
-            return Err(self.fail(
-                SmoothError::TimeNotIncreasing {
-                    step,
-                    prev,
-                    now: time,
-                }
-                .into(),
-            ));
-        }
-        Ok((step, time - prev))
+        self.record.failure()
     }
 
     /// Records `estimate`, the posterior at `time` of `imm` run from the latest step:
@@ -296,12 +271,16 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
         Fcv: SmoothingFilter<4>,
         Fct: SmoothingFilter<5>,
     {
-        let (step, dt) = self.next_interval(time)?;
+        let (step, dt) = self.record.next_interval(time)?;
         let tr = match transition(imm, self.latest(), dt) {
             Ok(tr) => tr,
-            Err(source) => return Err(self.fail(ImmSmoothError::ForwardFailed { step, source })),
+            Err(source) => {
+                return Err(self
+                    .record
+                    .fail(ImmSmoothError::ForwardFailed { step, source }));
+            }
         };
-        self.steps.push(AircraftStep {
+        self.record.push(AircraftStep {
             time,
             transition: Some(tr),
             filtered: estimate,
@@ -326,16 +305,24 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
         Fcv: SmoothingFilter<4>,
         Fct: SmoothingFilter<5>,
     {
-        let (step, dt) = self.next_interval(time)?;
+        let (step, dt) = self.record.next_interval(time)?;
         let upd = match imm.step(self.latest(), dt, radar, z) {
             Ok(u) => u,
-            Err(source) => return Err(self.fail(ImmSmoothError::ForwardFailed { step, source })),
+            Err(source) => {
+                return Err(self
+                    .record
+                    .fail(ImmSmoothError::ForwardFailed { step, source }));
+            }
         };
         let tr = match transition(imm, self.latest(), dt) {
             Ok(tr) => tr,
-            Err(source) => return Err(self.fail(ImmSmoothError::ForwardFailed { step, source })),
+            Err(source) => {
+                return Err(self
+                    .record
+                    .fail(ImmSmoothError::ForwardFailed { step, source }));
+            }
         };
-        self.steps.push(AircraftStep {
+        self.record.push(AircraftStep {
             time,
             transition: Some(tr),
             filtered: upd.estimate,
@@ -359,9 +346,6 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
         &self,
         weights: PairWeights,
     ) -> Result<Vec<AircraftSmoothed<C, R>>, ImmSmoothError> {
-        if let Some(e) = &self.failure {
-            return Err(e.clone());
-        }
-        aircraft_smooth(&self.markov, weights, &self.steps)
+        aircraft_smooth(&self.markov, weights, self.record.to_smooth()?)
     }
 }
