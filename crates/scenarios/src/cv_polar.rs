@@ -10,11 +10,10 @@
 //! conversion's covariance, evaluated at the measured plot, turning over-confident
 //! over many scans (ANEES ≈ 6.8 at 1°, seed 1, 100 runs).
 
-use argus_core_math::Vector;
 use argus_sensors::Measurement;
 use argus_sim::{
-    KinematicState, MetricsSums, Schedule, Segment, SensorId, SensorKind, SensorSpec, StepRecord,
-    Trajectory, Truth, generate_plots,
+    KinematicState, MetricsSums, Schedule, Segment, SensorSpec, StepRecord, Trajectory, Truth,
+    generate_plots,
 };
 use serde::{Deserialize, Serialize};
 
@@ -25,6 +24,7 @@ use crate::campaign::{Campaign, Footprint, Retained, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::estimator::{CvKf, cv_kf, position, step, unbiased};
 use crate::params::{ParamSpec, Params};
+use crate::polar_scene::{first_trajectory, polar_radar};
 use crate::report::{Figure, Line, LineStyle, Report, Row, Series};
 use crate::scenario::Scenario;
 
@@ -134,18 +134,10 @@ impl Scenario for CvPolar {
                 duration: p.get("duration")?,
             }],
         )?);
-        let radar = SensorSpec::new(
-            SensorId(1),
-            Vector::<3>::zeros(),
-            SensorKind::Polar {
-                sigma_range: p.get("sigma_r")?,
-                sigma_azimuth: p.get("sigma_az_deg")?.to_radians(),
-            },
-            Schedule::Periodic {
-                period: p.get("period")?,
-                offset: 0.0,
-            },
-        )?;
+        let radar = polar_radar(p, |period| Schedule::Periodic {
+            period,
+            offset: 0.0,
+        })?;
         Ok((truth, vec![radar]))
     }
 
@@ -204,11 +196,7 @@ impl Campaign for CvPolar {
 
     fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let (truth, sensors) = self.scene(p)?;
-        let traj = truth
-            .targets()
-            .first()
-            .map(|(_, t)| t.clone())
-            .ok_or_else(|| degenerate("no target"))?;
+        let traj = first_trajectory(&truth, "cv-polar")?;
         Ok(Setup {
             traj,
             sensors,

@@ -14,16 +14,13 @@ mod estimate;
 mod report;
 mod sums;
 
-use argus_core_math::Vector;
-use argus_sim::{
-    KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
-    generate_plots,
-};
+use argus_sim::{KinematicState, Schedule, Segment, SensorSpec, Trajectory, Truth, generate_plots};
 
 use crate::campaign::{Campaign, Splittable, run_whole};
 use crate::context::RunContext;
 use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
+use crate::polar_scene::{first_trajectory, polar_radar};
 use crate::report::Report;
 use crate::scenario::Scenario;
 
@@ -193,18 +190,10 @@ impl Scenario for Gimpo {
             KinematicState::planar(-60_000.0, -20_000.0, 90.0, 0.0),
             segments,
         )?);
-        let radar = SensorSpec::new(
-            SensorId(1),
-            Vector::<3>::zeros(),
-            SensorKind::Polar {
-                sigma_range: p.get("sigma_r")?,
-                sigma_azimuth: p.get("sigma_az_deg")?.to_radians(),
-            },
-            Schedule::RotatingBeam {
-                period: p.get("period")?,
-                azimuth_at_zero: 0.0,
-            },
-        )?;
+        let radar = polar_radar(p, |period| Schedule::RotatingBeam {
+            period,
+            azimuth_at_zero: 0.0,
+        })?;
         Ok((truth, vec![radar]))
     }
 
@@ -237,15 +226,7 @@ impl Campaign for Gimpo {
     fn setup(&self, p: &Params) -> Result<Setup, ScenarioError> {
         let (truth, sensors) = self.scene(p)?;
         let est = estimate::Estimators::new(p)?;
-        let traj: Trajectory =
-            truth
-                .targets()
-                .first()
-                .map(|(_, t)| t.clone())
-                .ok_or_else(|| ScenarioError::Degenerate {
-                    scenario: "gimpo",
-                    message: "no target".into(),
-                })?;
+        let traj = first_trajectory(&truth, "gimpo")?;
         // Any generator gives the same times (only the noise depends on it).
         let times: Vec<f64> = generate_plots(&truth, &sensors, &mut argus_sim::run_rng(0, 0))?
             .iter()

@@ -34,9 +34,11 @@ mod context;
 mod error;
 pub mod estimator;
 mod params;
+mod polar_scene;
 mod registry;
 mod report;
 mod scenario;
+mod tracker_params;
 
 mod bias_32;
 mod clutter;

@@ -133,6 +133,23 @@ impl RunInput<'_> {
     fn truth_pos(&self, t: f64) -> Result<Vector<4>, ScenarioError> {
         Ok(self.traj.state_at(t)?.state_2d())
     }
+
+    /// Steps an estimate from `first` (at the second plot) along the plots after the two
+    /// initialising ones: `advance(estimate, dt, t, plot)` returns the estimate at the
+    /// plot's time `t`, `dt` after the one before, and records what the caller keeps.
+    fn walk<E>(
+        &self,
+        first: E,
+        mut advance: impl FnMut(&E, f64, f64, &PolarMeasurement) -> Result<E, ScenarioError>,
+    ) -> Result<(), ScenarioError> {
+        let mut est = first;
+        let mut prev = self.t2;
+        for (t, pl) in self.rest {
+            est = advance(&est, t - prev, *t, pl)?;
+            prev = *t;
+        }
+        Ok(())
+    }
 }
 
 /// The estimators of the campaign, built once from the parameters.
@@ -259,19 +276,16 @@ impl Estimators {
         var0: NoiseVariances,
         out: &mut RunOut,
     ) -> Result<(), ScenarioError> {
-        let mut est = inp.init(&var0)?;
-        let mut prev = inp.t2;
-        for (t, pl) in inp.rest {
+        inp.walk(inp.init(&var0)?, |est, dt, t, pl| {
             let (m, z) = self.conv.convert(pl, &var0)?;
-            est = self.imm.step(&est, t - prev, &m, &z)?.estimate;
-            prev = *t;
+            let est = self.imm.step(est, dt, &m, &z)?.estimate;
             let c = est.combined()?;
-            out.fixed_se[i].push(se(c.mean(), &inp.truth_pos(*t)?));
+            out.fixed_se[i].push(se(c.mean(), &inp.truth_pos(t)?));
             if i == 2 {
                 out.mu.push(est.mode_probabilities());
             }
-        }
-        Ok(())
+            Ok(est)
+        })
     }
 
     /// The IMM with the true R recorded and smoothed over the whole run (issue 19): the
@@ -336,13 +350,11 @@ impl Estimators {
         run: u64,
         out: &mut RunOut,
     ) -> Result<(), ScenarioError> {
-        let mut mest = MultiImmEstimate::new(inp.init(&var0)?, var0);
-        let mut prev = inp.t2;
-        for (t, pl) in inp.rest {
-            mest = self.multi.step(&mest, t - prev, pl, &self.conv)?.estimate;
-            prev = *t;
+        let first = MultiImmEstimate::new(inp.init(&var0)?, var0);
+        inp.walk(first, |mest, dt, t, pl| {
+            let mest = self.multi.step(mest, dt, pl, &self.conv)?.estimate;
             let c = mest.combined()?;
-            let tr = inp.truth_pos(*t)?;
+            let tr = inp.truth_pos(t)?;
             out.multi_se[i].push(se(c.mean(), &tr));
             out.multi_ratio[i].push(mest.reference().range() / self.true_var.range());
             if i == 2 && run == 0 {
@@ -350,8 +362,16 @@ impl Estimators {
                 out.track
                     .push([tr[0], tr[2], z[0], z[1], c.mean()[0], c.mean()[2]]);
             }
-        }
-        Ok(())
+            Ok(mest)
+        })
+    }
+
+    /// Estimated over true variances: `[range, azimuth]`.
+    fn ratios(&self, v: &NoiseVariances) -> [f64; 2] {
+        [
+            v.range() / self.true_var.range(),
+            v.azimuth() / self.true_var.azimuth(),
+        ]
     }
 
     /// The variational estimator from `var0`.
@@ -362,20 +382,14 @@ impl Estimators {
         var0: NoiseVariances,
         out: &mut RunOut,
     ) -> Result<(), ScenarioError> {
-        let mut vest = VariationalEstimate::new(inp.init(&var0)?, var0, 2.0)?;
-        let mut prev = inp.t2;
-        for (t, pl) in inp.rest {
-            vest = self.vb.step(&vest, t - prev, pl, &self.conv)?.0;
-            prev = *t;
+        let first = VariationalEstimate::new(inp.init(&var0)?, var0, 2.0)?;
+        inp.walk(first, |vest, dt, t, pl| {
+            let vest = self.vb.step(vest, dt, pl, &self.conv)?.0;
             let c = vest.imm().combined()?;
-            out.vb_se[i].push(se(c.mean(), &inp.truth_pos(*t)?));
-            let v = vest.variances()?;
-            out.vb_ratio[i].push([
-                v.range() / self.true_var.range(),
-                v.azimuth() / self.true_var.azimuth(),
-            ]);
-        }
-        Ok(())
+            out.vb_se[i].push(se(c.mean(), &inp.truth_pos(t)?));
+            out.vb_ratio[i].push(self.ratios(&vest.variances()?));
+            Ok(vest)
+        })
     }
 
     /// The evidence estimator from `var0`.
@@ -386,20 +400,14 @@ impl Estimators {
         var0: NoiseVariances,
         out: &mut RunOut,
     ) -> Result<(), ScenarioError> {
-        let mut eest = EvidenceEstimate::new(inp.init(&var0)?, var0, 2.0)?;
-        let mut prev = inp.t2;
-        for (t, pl) in inp.rest {
-            eest = self.ev.step(&eest, t - prev, pl, &self.conv)?;
-            prev = *t;
+        let first = EvidenceEstimate::new(inp.init(&var0)?, var0, 2.0)?;
+        inp.walk(first, |eest, dt, t, pl| {
+            let eest = self.ev.step(eest, dt, pl, &self.conv)?;
             let c = eest.combined()?;
-            out.ev_se[i].push(se(c.mean(), &inp.truth_pos(*t)?));
-            let v = eest.variances();
-            out.ev_ratio[i].push([
-                v.range() / self.true_var.range(),
-                v.azimuth() / self.true_var.azimuth(),
-            ]);
-        }
-        Ok(())
+            out.ev_se[i].push(se(c.mean(), &inp.truth_pos(t)?));
+            out.ev_ratio[i].push(self.ratios(eest.variances()));
+            Ok(eest)
+        })
     }
 
     /// The difference estimator from `var0`.
@@ -410,19 +418,13 @@ impl Estimators {
         var0: NoiseVariances,
         out: &mut RunOut,
     ) -> Result<(), ScenarioError> {
-        let mut dest = DifferenceEstimate::new(inp.init(&var0)?, var0, 2.0)?;
-        let mut prev = inp.t2;
-        for (t, pl) in inp.rest {
-            dest = self.df.step(&dest, t - prev, pl, &self.conv)?.0;
-            prev = *t;
+        let first = DifferenceEstimate::new(inp.init(&var0)?, var0, 2.0)?;
+        inp.walk(first, |dest, dt, t, pl| {
+            let dest = self.df.step(dest, dt, pl, &self.conv)?.0;
             let c = dest.imm().combined()?;
-            out.df_se[i].push(se(c.mean(), &inp.truth_pos(*t)?));
-            let v = dest.variances()?;
-            out.df_ratio[i].push([
-                v.range() / self.true_var.range(),
-                v.azimuth() / self.true_var.azimuth(),
-            ]);
-        }
-        Ok(())
+            out.df_se[i].push(se(c.mean(), &inp.truth_pos(t)?));
+            out.df_ratio[i].push(self.ratios(&dest.variances()?));
+            Ok(dest)
+        })
     }
 }

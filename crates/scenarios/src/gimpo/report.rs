@@ -13,7 +13,6 @@ pub(super) const WARMUP: f64 = 0.25;
 /// (100 runs, p = 0.1, ±5 % clip): final variance ratio from each start.
 const REFERENCE_RATIO: [f64; 5] = [0.98, 1.01, 1.03, 1.05, 1.07];
 
-/// Mean and sample standard deviation.
 /// The per-step means the series and figures show.
 struct Means {
     mu: Vec<[f64; 3]>,
@@ -144,168 +143,115 @@ fn smoothing_rows(
 
 /// The table: fixed R, then the multi-IMM, variational, evidence and difference
 /// estimators from each start.
-#[allow(clippy::too_many_lines)]
 fn rows(p: &Params, clip: Option<f64>, st: &Sums) -> Result<Vec<Row>, ScenarioError> {
     let true_rms = Sums::rms(st.tail_fixed[2]);
     let mut rows = Vec::new();
-    let row = |key: String,
-               quantity: String,
-               paper: Option<f64>,
-               paper_text: Option<String>,
-               ours: f64,
-               unit: &str,
-               note: String| Row {
-        key,
-        quantity,
-        paper,
-        paper_text,
-        ours,
-        unit: unit.into(),
-        note,
-    };
     for (i, f) in STARTS.iter().enumerate() {
         let fixed = Sums::rms(st.tail_fixed[i]);
-        rows.push(row(
-            format!("rms_fixed_{f}"),
-            format!("RMS pos. error, fixed R = {f} × truth"),
-            None,
-            Some("Fig. 5/7: grows as R departs from truth, faster below".into()),
-            fixed,
-            "m",
-            format!(
+        rows.push(
+            Row::new(
+                format!("rms_fixed_{f}"),
+                format!("RMS pos. error, fixed R = {f} × truth"),
+                fixed,
+                "m",
+            )
+            .paper_text("Fig. 5/7: grows as R departs from truth, faster below")
+            .note(format!(
                 "{:+.2} % vs true R; t ≥ {:.0} % of the flight",
                 100.0 * (fixed / true_rms - 1.0),
                 WARMUP * 100.0
-            ),
-        ));
+            )),
+        );
     }
     smoothing_rows(p, st, true_rms, &mut rows)?;
     for (i, f) in STARTS.iter().enumerate() {
         let (m, sd) = st.last_multi[i].mean_sd();
-        rows.push(row(
-            format!("ratio_multi_{f}"),
-            format!("multi-IMM final R ratio from {f}"),
-            Some(REFERENCE_RATIO[i]),
-            Some(format!(
+        rows.push(
+            Row::new(
+                format!("ratio_multi_{f}"),
+                format!("multi-IMM final R ratio from {f}"),
+                m,
+                "-",
+            )
+            .paper(REFERENCE_RATIO[i])
+            .paper_text(format!(
                 "paper: within 5 % of 1; re-implementation {}",
                 REFERENCE_RATIO[i]
+            ))
+            .note(format!(
+                "per-run sd {sd:.3}; p = {}, clip {:?}",
+                p.get("p")?,
+                clip
             )),
-            m,
-            "-",
-            format!("per-run sd {sd:.3}; p = {}, clip {:?}", p.get("p")?, clip),
-        ));
+        );
     }
     for (i, f) in STARTS.iter().enumerate() {
-        let dynr = Sums::rms(st.tail_multi[i]);
-        rows.push(row(
-            format!("rms_multi_{f}"),
-            format!("RMS pos. error, multi-IMM from {f}"),
-            Some(true_rms),
-            Some("paper: within 0.5 % of true R (Fig. 7)".into()),
-            dynr,
-            "m",
-            format!("{:+.2} % vs true R", 100.0 * (dynr / true_rms - 1.0)),
+        rows.push(rms_row(
+            ("multi", "multi-IMM"),
+            *f,
+            Sums::rms(st.tail_multi[i]),
+            true_rms,
+            "paper: within 0.5 % of true R (Fig. 7)",
         ));
     }
-    for (i, f) in STARTS.iter().enumerate() {
-        let (mr, sdr) = st.last_vb[i][0].mean_sd();
-        let (ma, sda) = st.last_vb[i][1].mean_sd();
-        let dynr = Sums::rms(st.tail_vb[i]);
-        rows.push(row(
-            format!("ratio_vb_range_{f}"),
-            format!("variational: final σr² ratio from {f}"),
-            Some(1.0),
-            Some("goal: within 3 % (beyond the paper)".into()),
-            mr,
-            "-",
-            format!("per-run sd {sdr:.3}"),
-        ));
-        rows.push(row(
-            format!("ratio_vb_azimuth_{f}"),
-            format!("variational: final σθ² ratio from {f}"),
-            Some(1.0),
-            Some("goal: within 3 % (beyond the paper)".into()),
-            ma,
-            "-",
-            format!("per-run sd {sda:.3}"),
-        ));
-        rows.push(row(
-            format!("rms_vb_{f}"),
-            format!("RMS pos. error, variational from {f}"),
-            Some(true_rms),
-            Some("true-R IMM".into()),
-            dynr,
-            "m",
-            format!("{:+.2} % vs true R", 100.0 * (dynr / true_rms - 1.0)),
-        ));
-    }
-    for (i, f) in STARTS.iter().enumerate() {
-        let (mr, sdr) = st.last_ev[i][0].mean_sd();
-        let (ma, sda) = st.last_ev[i][1].mean_sd();
-        let dynr = Sums::rms(st.tail_ev[i]);
-        for (axis, sym, m, sd) in [("range", "σr²", mr, sdr), ("azimuth", "σθ²", ma, sda)] {
-            rows.push(row(
-                format!("ratio_ev_{axis}_{f}"),
-                format!("evidence: final {sym} ratio from {f}"),
-                Some(1.0),
-                Some("goal: within 3 % (beyond the paper)".into()),
-                m,
-                "-",
-                format!("per-run sd {sd:.3}"),
+    for (estimator, last, tail) in [
+        (("vb", "variational"), &st.last_vb, &st.tail_vb),
+        (("ev", "evidence"), &st.last_ev, &st.tail_ev),
+        (("df", "difference"), &st.last_df, &st.tail_df),
+    ] {
+        for (i, f) in STARTS.iter().enumerate() {
+            for ((axis, sym), ratio) in [("range", "σr²"), ("azimuth", "σθ²")].iter().zip(&last[i])
+            {
+                let (m, sd) = ratio.mean_sd();
+                rows.push(
+                    Row::new(
+                        format!("ratio_{}_{axis}_{f}", estimator.0),
+                        format!("{}: final {sym} ratio from {f}", estimator.1),
+                        m,
+                        "-",
+                    )
+                    .paper(1.0)
+                    .paper_text("goal: within 3 % (beyond the paper)")
+                    .note(format!("per-run sd {sd:.3}")),
+                );
+            }
+            rows.push(rms_row(
+                estimator,
+                *f,
+                Sums::rms(tail[i]),
+                true_rms,
+                "true-R IMM",
             ));
         }
-        rows.push(row(
-            format!("rms_ev_{f}"),
-            format!("RMS pos. error, evidence from {f}"),
-            Some(true_rms),
-            Some("true-R IMM".into()),
-            dynr,
-            "m",
-            format!("{:+.2} % vs true R", 100.0 * (dynr / true_rms - 1.0)),
-        ));
     }
-    for (i, f) in STARTS.iter().enumerate() {
-        let (mr, sdr) = st.last_df[i][0].mean_sd();
-        let (ma, sda) = st.last_df[i][1].mean_sd();
-        let dynr = Sums::rms(st.tail_df[i]);
-        for (axis, sym, m, sd) in [("range", "σr²", mr, sdr), ("azimuth", "σθ²", ma, sda)] {
-            rows.push(row(
-                format!("ratio_df_{axis}_{f}"),
-                format!("difference: final {sym} ratio from {f}"),
-                Some(1.0),
-                Some("goal: within 3 % (beyond the paper)".into()),
-                m,
-                "-",
-                format!("per-run sd {sd:.3}"),
-            ));
-        }
-        rows.push(row(
-            format!("rms_df_{f}"),
-            format!("RMS pos. error, difference from {f}"),
-            Some(true_rms),
-            Some("true-R IMM".into()),
-            dynr,
-            "m",
-            format!("{:+.2} % vs true R", 100.0 * (dynr / true_rms - 1.0)),
-        ));
-    }
-
     Ok(rows)
+}
+
+/// The row of an estimator's RMS position error `rms` from the start `f`, against the
+/// filtered IMM's with the true R (`true_rms`); `estimator` is its key tag and name.
+fn rms_row(estimator: (&str, &str), f: f64, rms: f64, true_rms: f64, paper_text: &str) -> Row {
+    let (tag, name) = estimator;
+    Row::new(
+        format!("rms_{tag}_{f}"),
+        format!("RMS pos. error, {name} from {f}"),
+        rms,
+        "m",
+    )
+    .paper(true_rms)
+    .paper_text(paper_text)
+    .note(format!(
+        "{:+.2} % vs true R",
+        100.0 * (rms / true_rms - 1.0)
+    ))
 }
 
 /// The per-step series: mode probabilities, the estimators' ratios, the fixed-R RMS.
 fn series(times: &[f64], m: &Means) -> Series {
-    let (mean_mu, ratios, vb_r, vb_a, ev_r, ev_a, df_r, df_a, fixed_rms) = (
-        &m.mu,
-        &m.ratios,
-        &m.vb_r,
-        &m.vb_a,
-        &m.ev_r,
-        &m.ev_a,
-        &m.df_r,
-        &m.df_a,
-        &m.fixed_rms,
-    );
+    let per_axis = [
+        ("vb", &m.vb_r, &m.vb_a),
+        ("ev", &m.ev_r, &m.ev_a),
+        ("df", &m.df_r, &m.df_a),
+    ];
     let mut columns = vec![
         "t".to_owned(),
         "mu_cv".into(),
@@ -315,17 +261,11 @@ fn series(times: &[f64], m: &Means) -> Series {
     for f in STARTS {
         columns.push(format!("ratio_multi_{f}"));
     }
-    for f in STARTS {
-        columns.push(format!("ratio_vb_range_{f}"));
-        columns.push(format!("ratio_vb_azimuth_{f}"));
-    }
-    for f in STARTS {
-        columns.push(format!("ratio_ev_range_{f}"));
-        columns.push(format!("ratio_ev_azimuth_{f}"));
-    }
-    for f in STARTS {
-        columns.push(format!("ratio_df_range_{f}"));
-        columns.push(format!("ratio_df_azimuth_{f}"));
+    for (tag, _, _) in per_axis {
+        for f in STARTS {
+            columns.push(format!("ratio_{tag}_range_{f}"));
+            columns.push(format!("ratio_{tag}_azimuth_{f}"));
+        }
     }
     for f in STARTS {
         columns.push(format!("rms_fixed_{f}"));
@@ -333,21 +273,15 @@ fn series(times: &[f64], m: &Means) -> Series {
     let series_rows = (0..times.len())
         .map(|k| {
             let mut v = vec![times[k]];
-            v.extend(mean_mu[k]);
-            v.extend(ratios.iter().map(|r| r[k]));
-            for i in 0..5 {
-                v.push(vb_r[i][k]);
-                v.push(vb_a[i][k]);
+            v.extend(m.mu[k]);
+            v.extend(m.ratios.iter().map(|r| r[k]));
+            for (_, range, azimuth) in per_axis {
+                for (r, a) in range.iter().zip(azimuth) {
+                    v.push(r[k]);
+                    v.push(a[k]);
+                }
             }
-            for i in 0..5 {
-                v.push(ev_r[i][k]);
-                v.push(ev_a[i][k]);
-            }
-            for i in 0..5 {
-                v.push(df_r[i][k]);
-                v.push(df_a[i][k]);
-            }
-            v.extend(fixed_rms.iter().map(|r| r[k]));
+            v.extend(m.fixed_rms.iter().map(|r| r[k]));
             v
         })
         .collect();
@@ -358,23 +292,54 @@ fn series(times: &[f64], m: &Means) -> Series {
     }
 }
 
+/// `(t, y)` at each step's time.
+fn points(times: &[f64], ys: &[f64]) -> Vec<(f64, f64)> {
+    times.iter().zip(ys).map(|(t, y)| (*t, *y)).collect()
+}
+
+/// One line per start of the per-step means `means` (one series per start), labelled
+/// `label(f)` for the start `f`.
+fn per_start<'a>(
+    times: &'a [f64],
+    means: &'a [Vec<f64>],
+    style: LineStyle,
+    label: impl Fn(f64) -> String + 'a,
+) -> impl Iterator<Item = Line> + 'a {
+    STARTS.iter().zip(means).map(move |(f, r)| Line {
+        label: label(*f),
+        points: points(times, r),
+        style,
+    })
+}
+
+/// Fig. 6 of a per-axis estimator (`what`: `evidence`, `difference`): its σr² and σθ²
+/// ratios `range` and `azimuth` from each start, means of `nr` runs.
+fn axis_ratio_figure(
+    name: &str,
+    what: &str,
+    times: &[f64],
+    (range, azimuth): (&[Vec<f64>], &[Vec<f64>]),
+    nr: usize,
+) -> Figure {
+    Figure {
+        name: name.into(),
+        title: format!(
+            "gimpo: {what} estimator, estimated / true variance per axis, mean of {nr} runs"
+        ),
+        x_label: "time (s)".into(),
+        y_label: "variance ratio".into(),
+        lines: per_start(times, range, LineStyle::Solid, |f| format!("σr² from {f}"))
+            .chain(per_start(times, azimuth, LineStyle::Bound, |f| {
+                format!("σθ² from {f}")
+            }))
+            .collect(),
+    }
+}
+
 /// Figs. 3–7.
-#[allow(clippy::too_many_lines)]
 fn figures(st: &Sums, m: &Means) -> Vec<Figure> {
     let times = &st.times;
-    let (mean_mu, ratios, vb_a, ev_r, ev_a, df_r, df_a, fixed_rms) = (
-        &m.mu,
-        &m.ratios,
-        &m.vb_a,
-        &m.ev_r,
-        &m.ev_a,
-        &m.df_r,
-        &m.df_a,
-        &m.fixed_rms,
-    );
-    let pts =
-        |ys: &[f64]| -> Vec<(f64, f64)> { times.iter().zip(ys).map(|(t, y)| (*t, *y)).collect() };
-    let track = st.track.clone();
+    let track = &st.track;
     let nr = st.count;
     vec![
         Figure {
@@ -382,23 +347,18 @@ fn figures(st: &Sums, m: &Means) -> Vec<Figure> {
             title: "gimpo: truth, plots and multi-IMM estimate (run 0, start 1)".into(),
             x_label: "x (m)".into(),
             y_label: "y (m)".into(),
-            lines: vec![
-                Line {
-                    label: "true".into(),
-                    points: track.iter().map(|v| (v[0], v[1])).collect(),
-                    style: LineStyle::Solid,
-                },
-                Line {
-                    label: "plots (converted)".into(),
-                    points: track.iter().map(|v| (v[2], v[3])).collect(),
-                    style: LineStyle::Points,
-                },
-                Line {
-                    label: "estimate".into(),
-                    points: track.iter().map(|v| (v[4], v[5])).collect(),
-                    style: LineStyle::Solid,
-                },
-            ],
+            lines: [
+                ("true", 0, LineStyle::Solid),
+                ("plots (converted)", 2, LineStyle::Points),
+                ("estimate", 4, LineStyle::Solid),
+            ]
+            .into_iter()
+            .map(|(label, c, style)| Line {
+                label: label.into(),
+                points: track.iter().map(|v| (v[c], v[c + 1])).collect(),
+                style,
+            })
+            .collect(),
         },
         Figure {
             name: "fig4_mode_probabilities".into(),
@@ -410,7 +370,7 @@ fn figures(st: &Sums, m: &Means) -> Vec<Figure> {
                 .enumerate()
                 .map(|(j, l)| Line {
                     label: (*l).into(),
-                    points: times.iter().zip(mean_mu).map(|(t, m)| (*t, m[j])).collect(),
+                    points: times.iter().zip(&m.mu).map(|(t, m)| (*t, m[j])).collect(),
                     style: LineStyle::Solid,
                 })
                 .collect(),
@@ -420,137 +380,64 @@ fn figures(st: &Sums, m: &Means) -> Vec<Figure> {
             title: format!("gimpo: RMS position error with fixed R ({nr} runs)"),
             x_label: "time (s)".into(),
             y_label: "RMS position error (m)".into(),
-            lines: STARTS
-                .iter()
-                .zip(fixed_rms)
-                .map(|(f, r)| Line {
-                    label: format!("R = {f} × truth"),
-                    points: pts(r),
-                    style: LineStyle::Solid,
-                })
-                .collect(),
+            lines: per_start(times, &m.fixed_rms, LineStyle::Solid, |f| {
+                format!("R = {f} × truth")
+            })
+            .collect(),
         },
         Figure {
             name: "fig6_ratio".into(),
             title: format!("gimpo: estimated / true noise variance, mean of {nr} runs"),
             x_label: "time (s)".into(),
             y_label: "variance ratio".into(),
-            lines: STARTS
-                .iter()
-                .zip(ratios)
-                .map(|(f, r)| Line {
-                    label: format!("multi-IMM from {f}"),
-                    points: pts(r),
-                    style: LineStyle::Solid,
-                })
-                .chain(STARTS.iter().zip(vb_a).map(|(f, r)| Line {
-                    label: format!("variational σθ² from {f}"),
-                    points: pts(r),
-                    style: LineStyle::Bound,
-                }))
-                .chain(STARTS.iter().zip(ev_a).map(|(f, r)| Line {
-                    label: format!("evidence σθ² from {f}"),
-                    points: pts(r),
-                    style: LineStyle::Points,
-                }))
-                .collect(),
+            lines: per_start(times, &m.ratios, LineStyle::Solid, |f| {
+                format!("multi-IMM from {f}")
+            })
+            .chain(per_start(times, &m.vb_a, LineStyle::Bound, |f| {
+                format!("variational σθ² from {f}")
+            }))
+            .chain(per_start(times, &m.ev_a, LineStyle::Points, |f| {
+                format!("evidence σθ² from {f}")
+            }))
+            .collect(),
         },
-        Figure {
-            name: "fig6_evidence_ratio".into(),
-            title: format!(
-                "gimpo: evidence estimator, estimated / true variance per axis, mean of {nr} runs"
-            ),
-            x_label: "time (s)".into(),
-            y_label: "variance ratio".into(),
-            lines: STARTS
-                .iter()
-                .zip(ev_r)
-                .map(|(f, r)| Line {
-                    label: format!("σr² from {f}"),
-                    points: pts(r),
-                    style: LineStyle::Solid,
-                })
-                .chain(STARTS.iter().zip(ev_a).map(|(f, r)| Line {
-                    label: format!("σθ² from {f}"),
-                    points: pts(r),
-                    style: LineStyle::Bound,
-                }))
-                .collect(),
-        },
-        Figure {
-            name: "fig6_difference_ratio".into(),
-            title: format!(
-                "gimpo: difference estimator, estimated / true variance per axis, mean of {nr} runs"
-            ),
-            x_label: "time (s)".into(),
-            y_label: "variance ratio".into(),
-            lines: STARTS
-                .iter()
-                .zip(df_r)
-                .map(|(f, r)| Line {
-                    label: format!("σr² from {f}"),
-                    points: pts(r),
-                    style: LineStyle::Solid,
-                })
-                .chain(STARTS.iter().zip(df_a).map(|(f, r)| Line {
-                    label: format!("σθ² from {f}"),
-                    points: pts(r),
-                    style: LineStyle::Bound,
-                }))
-                .collect(),
-        },
+        axis_ratio_figure(
+            "fig6_evidence_ratio",
+            "evidence",
+            times,
+            (&m.ev_r, &m.ev_a),
+            nr,
+        ),
+        axis_ratio_figure(
+            "fig6_difference_ratio",
+            "difference",
+            times,
+            (&m.df_r, &m.df_a),
+            nr,
+        ),
         Figure {
             name: "fig7_rms_vs_r".into(),
             title: format!("gimpo: RMS position error (t ≥ 25 %) vs R factor ({nr} runs)"),
             x_label: "R factor (fixed, or initial)".into(),
             y_label: "RMS position error (m)".into(),
-            lines: vec![
-                Line {
-                    label: "static R".into(),
-                    points: STARTS
-                        .iter()
-                        .enumerate()
-                        .map(|(i, f)| (*f, Sums::rms(st.tail_fixed[i])))
-                        .collect(),
-                    style: LineStyle::Solid,
-                },
-                Line {
-                    label: "dynamic R (multi-IMM)".into(),
-                    points: STARTS
-                        .iter()
-                        .enumerate()
-                        .map(|(i, f)| (*f, Sums::rms(st.tail_multi[i])))
-                        .collect(),
-                    style: LineStyle::Solid,
-                },
-                Line {
-                    label: "dynamic R (variational)".into(),
-                    points: STARTS
-                        .iter()
-                        .enumerate()
-                        .map(|(i, f)| (*f, Sums::rms(st.tail_vb[i])))
-                        .collect(),
-                    style: LineStyle::Solid,
-                },
-                Line {
-                    label: "dynamic R (evidence)".into(),
-                    points: STARTS
-                        .iter()
-                        .enumerate()
-                        .map(|(i, f)| (*f, Sums::rms(st.tail_ev[i])))
-                        .collect(),
-                    style: LineStyle::Solid,
-                },
-                Line {
-                    label: "dynamic R (difference)".into(),
-                    points: STARTS
-                        .iter()
-                        .enumerate()
-                        .map(|(i, f)| (*f, Sums::rms(st.tail_df[i])))
-                        .collect(),
-                    style: LineStyle::Solid,
-                },
-            ],
+            lines: [
+                ("static R", &st.tail_fixed),
+                ("dynamic R (multi-IMM)", &st.tail_multi),
+                ("dynamic R (variational)", &st.tail_vb),
+                ("dynamic R (evidence)", &st.tail_ev),
+                ("dynamic R (difference)", &st.tail_df),
+            ]
+            .into_iter()
+            .map(|(label, tail)| Line {
+                label: label.into(),
+                points: STARTS
+                    .iter()
+                    .zip(tail)
+                    .map(|(f, t)| (*f, Sums::rms(*t)))
+                    .collect(),
+                style: LineStyle::Solid,
+            })
+            .collect(),
         },
     ]
 }

@@ -19,6 +19,7 @@ use super::truth::{self, Path};
 use crate::error::{ParamProblem, ScenarioError};
 use crate::params::Params;
 use crate::scenario::{Simulated, TruthRow};
+use crate::tracker_params;
 
 /// The radar's sensor id (the held-out check's plot files are of sensor 1).
 const RADAR: u32 = 1;
@@ -402,27 +403,16 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
     base.max_initiation_interval = p.get("init_revolutions")? * radar.period;
     base.max_speed = p.get("max_speed")?;
     if p.get("score")? >= 0.5 {
-        base.score = Some(argus_tracker::ScoreConfig {
-            p_detection: radar.p_detection,
-            clutter_density: radar.clutter_density().max(1e-12),
-            new_target_density: p.get("new_target_density")?,
-            false_confirm: p.get("false_confirm")?,
-            missed_confirm: 0.01,
-            delete_drop: p.get("delete_drop")?,
-        });
+        base.score = Some(tracker_params::track_score(
+            p,
+            radar.p_detection,
+            radar.clutter_density().max(1e-12),
+        )?);
     }
-    let imm = EstimatorConfig::ImmCv2 {
-        sigma_a_low: p.get("imm_sigma_low")?,
-        sigma_a_high: p.get("imm_sigma_high")?,
-        p_stay: p.get("imm_p_stay")?,
-    };
-    let jpda = AssociationConfig::Jpda {
-        p_detection: radar.p_detection,
-        // The tracker's λ is per m² per scan (here: per revolution); a floor keeps JPDA's
-        // weights finite without clutter.
-        clutter_density: radar.clutter_density().max(1e-12),
-        max_exact_events: p.get("jpda_max_events")? as usize,
-    };
+    let imm = tracker_params::imm_cv2(p)?;
+    // The tracker's λ is per m² per scan (here: per revolution); a floor keeps JPDA's
+    // weights finite without clutter.
+    let jpda = tracker_params::jpda(p, radar.p_detection, radar.clutter_density().max(1e-12))?;
     let with = |estimator, association| TrackerConfig {
         estimator,
         association,

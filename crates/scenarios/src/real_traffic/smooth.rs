@@ -43,6 +43,8 @@ use argus_sensors::CartesianPosition;
 
 use crate::error::ScenarioError;
 
+mod modes;
+
 /// The smoothed truth's assumed ADS-B position noise per axis (m), module docs.
 pub(crate) const TRUTH_SIGMA: f64 = 20.0;
 /// The smoothed truth's CV process noise (m/s²): a standard-rate turn at 200 m/s is
@@ -232,39 +234,7 @@ pub(crate) fn smoothed_imm_track(
     history: &TrackHistory,
     states: &[Option<ImmEstimate<4, 2>>],
 ) -> Result<TrackHistory, ScenarioError> {
-    let fail = |e: &dyn std::fmt::Display| smoothing_error(&format!("track {}", history.name()), e);
-    let rows = history.rows();
-    if states.len() != rows.len() {
-        return Err(fail(&format!(
-            "{} rows against {} IMM states",
-            rows.len(),
-            states.len()
-        )));
-    }
-    let mut track: Option<ImmTrack<4, 2>> = None;
-    let mut step_of = Vec::with_capacity(rows.len());
-    for (k, (r, est)) in rows.iter().zip(states).enumerate() {
-        let est = est.ok_or_else(|| fail(&format!("row {k} has no IMM state")))?;
-        match &mut track {
-            None => {
-                let mut t = ImmTrack::new(*imm.markov(), r.t, est).map_err(|e| fail(&e))?;
-                t.reserve(rows.len());
-                track = Some(t);
-            }
-            Some(t) => {
-                let last = t.steps()[t.steps().len() - 1].time();
-                if r.t > last {
-                    t.push(imm, r.t, est).map_err(|e| fail(&e))?;
-                }
-            }
-        }
-        step_of.push(track.as_ref().map_or(0, |t| t.steps().len() - 1));
-    }
-    let Some(track) = track else {
-        return TrackHistory::new(history.name(), Vec::new()).map_err(ScenarioError::from);
-    };
-    let smoothed = track.smooth().map_err(|e| fail(&e))?;
-    with_smoothed_states(history, &step_of, |k| smoothed[k].combined.mean())
+    modes::smoothed_mode_track::<ImmTrack<4, 2>, _>(imm, history, states, "IMM", |s| *s)
 }
 
 /// An aircraft-IMM track's rows smoothed by `argus_imm`'s aircraft-IMM smoother over its
@@ -279,39 +249,13 @@ pub(crate) fn smoothed_aircraft_track(
     history: &TrackHistory,
     states: &[Option<Box<AircraftEstimate<2, 3>>>],
 ) -> Result<TrackHistory, ScenarioError> {
-    let fail = |e: &dyn std::fmt::Display| smoothing_error(&format!("track {}", history.name()), e);
-    let rows = history.rows();
-    if states.len() != rows.len() {
-        return Err(fail(&format!(
-            "{} rows against {} aircraft-IMM states",
-            rows.len(),
-            states.len()
-        )));
-    }
-    let mut track: Option<AircraftTrack<2, 3>> = None;
-    let mut step_of = Vec::with_capacity(rows.len());
-    for (k, (r, est)) in rows.iter().zip(states).enumerate() {
-        let est = **est
-            .as_ref()
-            .ok_or_else(|| fail(&format!("row {k} has no aircraft-IMM state")))?;
-        match &mut track {
-            None => {
-                track = Some(AircraftTrack::new(*imm.markov(), r.t, est).map_err(|e| fail(&e))?);
-            }
-            Some(t) => {
-                let last = t.steps()[t.steps().len() - 1].time();
-                if r.t > last {
-                    t.push(imm, r.t, est).map_err(|e| fail(&e))?;
-                }
-            }
-        }
-        step_of.push(track.as_ref().map_or(0, |t| t.steps().len() - 1));
-    }
-    let Some(track) = track else {
-        return TrackHistory::new(history.name(), Vec::new()).map_err(ScenarioError::from);
-    };
-    let smoothed = track.smooth().map_err(|e| fail(&e))?;
-    with_smoothed_states(history, &step_of, |k| smoothed[k].combined.mean())
+    modes::smoothed_mode_track::<AircraftTrack<2, 3>, _>(
+        imm,
+        history,
+        states,
+        "aircraft-IMM",
+        |s| s.as_deref().copied(),
+    )
 }
 
 /// `Σ NEES` and the number of confirmed rows compared: each confirmed row's

@@ -11,14 +11,14 @@ use argus_sim::{
     SensorSpec, TargetId, TrackScan, TrackStatistics, Trajectory, Truth, generate_plots, run_rng,
 };
 use argus_tracker::{
-    AssociationConfig, EstimatorConfig, Plot, ScoreConfig, SensorConfig, TrackStatus, Tracker,
-    TrackerConfig,
+    AssociationConfig, EstimatorConfig, Plot, SensorConfig, TrackStatus, Tracker, TrackerConfig,
 };
 use rand_distr::{Distribution, OpenClosed01, Poisson, StandardUniform};
 use serde::{Deserialize, Serialize};
 
 use crate::error::{ParamProblem, ScenarioError};
 use crate::params::Params;
+use crate::tracker_params;
 
 /// The tracker configurations compared: summary key prefix and legend label. The first,
 /// `default`, is the configuration this scenario recommends (issue 18's goal is stated
@@ -166,16 +166,8 @@ impl Setup {
         // scenario (fastest aircraft + 20 %, unused plots kept for 2.4 scans).
         base.max_speed = base.max_speed.max(1.2 * speed.1);
         base.max_initiation_interval = 2.4 * period;
-        let imm = EstimatorConfig::ImmCv2 {
-            sigma_a_low: p.get("imm_sigma_low")?,
-            sigma_a_high: p.get("imm_sigma_high")?,
-            p_stay: p.get("imm_p_stay")?,
-        };
-        let jpda = AssociationConfig::Jpda {
-            p_detection: p_d,
-            clutter_density: clutter.max(MIN_CLUTTER_PER_SCAN) / area,
-            max_exact_events: p.get("jpda_max_events")? as usize,
-        };
+        let imm = tracker_params::imm_cv2(p)?;
+        let jpda = tracker_params::jpda(p, p_d, clutter.max(MIN_CLUTTER_PER_SCAN) / area)?;
         let default = default_config(
             p,
             &base,
@@ -467,14 +459,7 @@ fn default_config(
         estimator: EstimatorConfig::Aircraft { tuning },
         association: jpda,
         max_misses: p.get("default_max_misses")? as u32,
-        score: Some(ScoreConfig {
-            p_detection: p_d,
-            clutter_density,
-            new_target_density: p.get("new_target_density")?,
-            false_confirm: p.get("false_confirm")?,
-            missed_confirm: 0.01,
-            delete_drop: p.get("delete_drop")?,
-        }),
+        score: Some(tracker_params::track_score(p, p_d, clutter_density)?),
         ..base.clone()
     })
 }
