@@ -72,8 +72,7 @@ use std::collections::BTreeMap;
 use argus_core_math::Gaussian;
 use argus_filters::Kf;
 use argus_imm::{
-    AircraftEkf, AircraftEstimate, Imm, ImmEstimate, ImmSmoothed, MarkovMatrix, MultiImmEstimate,
-    NoiseVariances,
+    AircraftEkf, AircraftEstimate, Imm, ImmEstimate, MarkovMatrix, MultiImmEstimate, NoiseVariances,
 };
 use argus_motion_models::Cv2D;
 use argus_tracker::{
@@ -81,10 +80,12 @@ use argus_tracker::{
     TrackStatus, TrackerConfig,
 };
 
+use super::mode_record::{ModeRecorder, ModeTrack};
 use super::multi::{reason_name, status_name};
 use super::rows::{Column, Point, TrackRows};
-use super::smooth::{self, Failure, ImmRecorder, Smoothing, rts_rows};
+use super::smooth::{self, Failure, Smoothing, rts_rows};
 use super::smooth_aircraft::AircraftRecorder;
+use super::smooth_imm::ImmRecorder;
 use crate::error::CliError;
 
 /// The tracker's two-mode CV IMM.
@@ -279,40 +280,15 @@ fn imm_rows(
     live: &[usize],
     how: Smoothing,
 ) -> Result<Vec<SmoothedRow>, Failure> {
-    let mut rec = ImmRecorder::new(*imm.markov());
-    let times: Vec<f64> = live.iter().map(|&i| rows[i].time).collect();
-    let row_step = smooth::steps(&times).row_step;
-    for (k, &i) in live.iter().enumerate() {
-        let r = &rows[i];
-        let est = match (r.imm, r.multi.as_deref()) {
-            (Some(est), _) => est,
-            (None, Some(m)) => m.merged().map_err(|e| {
-                Failure::new(
-                    row_step[k],
-                    r.time,
-                    format!("the multi-IMM's hypotheses cannot be merged: {e}"),
-                )
-            })?,
-            (None, None) => {
-                return Err(Failure::new(
-                    row_step[k],
-                    r.time,
-                    "the row has no IMM state".to_owned(),
-                ));
-            }
-        };
-        rec.record(imm, r.time, est)?;
-    }
-    let s: Vec<ImmSmoothed<4, 2>> = rec.smooth(imm, how)?;
-    row_step
-        .iter()
-        .zip(&times)
-        .map(|(&k, &t)| {
-            s.get(k)
-                .map(|s| (s.combined, Some(s.mode_probabilities.to_vec())))
-                .ok_or_else(|| Failure::new(k, t, "no smoothed step".to_owned()))
-        })
-        .collect()
+    mode_rows(ImmRecorder::new(), imm, rows, live, how, |r| {
+        match (r.imm, r.multi.as_deref()) {
+            (Some(est), _) => Ok(est),
+            (None, Some(m)) => m
+                .merged()
+                .map_err(|e| format!("the multi-IMM's hypotheses cannot be merged: {e}")),
+            (None, None) => Err("the row has no IMM state".to_owned()),
+        }
+    })
 }
 
 /// The aircraft-IMM smoothing of one track's rows `live` (indices into `rows`, in time
@@ -327,19 +303,36 @@ fn aircraft_rows(
     live: &[usize],
     how: Smoothing,
 ) -> Result<Vec<SmoothedRow>, Failure> {
-    let mut rec = AircraftRecorder::new();
+    mode_rows(AircraftRecorder::new(), imm, rows, live, how, |r| {
+        r.aircraft
+            .as_deref()
+            .copied()
+            .ok_or_else(|| "the row has no aircraft-IMM state".to_owned())
+    })
+}
+
+/// The smoothing of one track's rows `live` (indices into `rows`, in time order) by a
+/// mode-switching estimator `imm` recorded in `rec`, each row's posterior taken by
+/// `state` (an error text when the row has none): one smoothed row per row (rows of one
+/// time share their step's).
+///
+/// # Errors
+/// [`Failure`] at the step whose row has no state, whose time goes backwards, or whose
+/// prediction or backward step fails.
+fn mode_rows<T: ModeTrack<M, Estimate = E>, M, E>(
+    mut rec: ModeRecorder<T, E>,
+    imm: &M,
+    rows: &[Row],
+    live: &[usize],
+    how: Smoothing,
+    state: impl Fn(&Row) -> Result<E, String>,
+) -> Result<Vec<SmoothedRow>, Failure> {
     let times: Vec<f64> = live.iter().map(|&i| rows[i].time).collect();
     let row_step = smooth::steps(&times).row_step;
     for (k, &i) in live.iter().enumerate() {
         let r = &rows[i];
-        let est = r.aircraft.as_deref().ok_or_else(|| {
-            Failure::new(
-                row_step[k],
-                r.time,
-                "the row has no aircraft-IMM state".to_owned(),
-            )
-        })?;
-        rec.record(imm, r.time, *est)?;
+        let est = state(r).map_err(|m| Failure::new(row_step[k], r.time, m))?;
+        rec.record(imm, r.time, est)?;
     }
     let s = rec.smooth(imm, how)?;
     row_step
@@ -347,7 +340,10 @@ fn aircraft_rows(
         .zip(&times)
         .map(|(&k, &t)| {
             s.get(k)
-                .map(|s| (s.combined, Some(s.mode_probabilities.to_vec())))
+                .map(|s| {
+                    let (combined, modes) = T::row(s);
+                    (combined, Some(modes))
+                })
                 .ok_or_else(|| Failure::new(k, t, "no smoothed step".to_owned()))
         })
         .collect()

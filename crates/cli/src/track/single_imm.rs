@@ -27,7 +27,8 @@ use argus_motion_models::PlanarModel;
 use argus_sensors::Measurement;
 
 use super::rows::{Column, Point, TrackRows};
-use super::smooth::{self, Failure, ImmRecorder};
+use super::smooth::{self, Failure};
+use super::smooth_imm::ImmRecorder;
 use super::spec::{ImmSpec, MAX_MODELS, MultiSpec};
 use super::start::{Ctx, too_few, two_point};
 use crate::error::CliError;
@@ -123,7 +124,7 @@ fn track_imm<const R: usize>(
     let mut est = start_estimate::<R>(spec, start.estimate)?;
     let mut t = start.second.time();
     // With smoothing, the forward pass is recorded (one step per time).
-    let mut record = ctx.smoothing.map(|_| ImmRecorder::new(*imm.markov()));
+    let mut record = ctx.smoothing.map(|_| ImmRecorder::new());
     let mut out: Vec<(f64, Gaussian<4>, [f64; R])> = Vec::with_capacity(start.rest.len() + 1);
     let fail = |f: Failure| f.into_cli(1);
     if let Some(r) = &mut record {
@@ -230,9 +231,7 @@ fn track_multi_k<const R: usize, const K: usize>(
     let mut t = p2.time();
     // With smoothing, the posteriors merged over the noise hypotheses are recorded as an
     // IMM forward pass of the common dynamics (module docs).
-    let mut record = ctx
-        .smoothing
-        .map(|_| ImmRecorder::new(*multi.imm().markov()));
+    let mut record = ctx.smoothing.map(|_| ImmRecorder::new());
     let fail = |f: Failure| f.into_cli(1);
     let mut out: Vec<(f64, Gaussian<4>, [f64; R], NoiseVariances)> =
         Vec::with_capacity(start.rest.len() + 1);

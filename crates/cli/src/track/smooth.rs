@@ -11,7 +11,7 @@
 //! ([`SmoothingFilter::predict_with_cross`]): the prediction the forward filter made
 //! (to round-off: the dense `F P Fᵀ` against the CV model's block form), since the KF
 //! and EKF on the CV model predict by the same linear model from the same posterior.
-//! The IMM is recorded during its forward pass ([`ImmTrack`]).
+//! The IMM is recorded during its forward pass ([`argus_imm::ImmTrack`]).
 //!
 //! # Fixed lag
 //! Step `j`'s fixed-lag estimate is `x̂ⱼ|ₖ`, the fixed-interval smoother of steps
@@ -28,7 +28,7 @@
 
 use argus_core_math::Gaussian;
 use argus_filters::{Lag, RtsStep, SmoothError, SmoothingFilter, rts_smooth};
-use argus_imm::{Imm, ImmEstimate, ImmSmoothError, ImmSmoothed, ImmTrack, MarkovMatrix};
+use argus_imm::ImmSmoothError;
 
 use crate::error::CliError;
 
@@ -234,86 +234,6 @@ pub(super) fn imm_failure(e: &ImmSmoothError, base: usize, times: &[f64]) -> Fai
     }
 }
 
-/// An IMM forward pass being recorded for smoothing, one step per time: the posterior of
-/// a time is recorded when the next time comes (plots of one instant are applied in
-/// turn), so that the transitions start from the last posterior of each time.
-pub(super) struct ImmRecorder<const R: usize> {
-    markov: MarkovMatrix<R>,
-    track: Option<ImmTrack<4, R>>,
-    pending: Option<(f64, ImmEstimate<4, R>)>,
-    times: Vec<f64>,
-}
-
-impl<const R: usize> ImmRecorder<R> {
-    /// An empty record of an IMM with `markov`.
-    pub(super) fn new(markov: MarkovMatrix<R>) -> Self {
-        Self {
-            markov,
-            track: None,
-            pending: None,
-            times: Vec::new(),
-        }
-    }
-
-    /// Records the posterior `est` at `time` (the row's).
-    ///
-    /// # Errors
-    /// [`Failure`] when the transitions from the previous time cannot be formed.
-    pub(super) fn record<F: SmoothingFilter<4>>(
-        &mut self,
-        imm: &Imm<F, 4, R>,
-        time: f64,
-        est: ImmEstimate<4, R>,
-    ) -> Result<(), Failure> {
-        if let Some((t, _)) = &self.pending
-            && t.total_cmp(&time).is_eq()
-        {
-            self.pending = Some((time, est));
-            return Ok(());
-        }
-        self.flush(imm)?;
-        self.pending = Some((time, est));
-        Ok(())
-    }
-
-    fn flush<F: SmoothingFilter<4>>(&mut self, imm: &Imm<F, 4, R>) -> Result<(), Failure> {
-        let Some((t, est)) = self.pending.take() else {
-            return Ok(());
-        };
-        self.times.push(t);
-        let res = match &mut self.track {
-            None => ImmTrack::new(self.markov, t, est).map(|tr| self.track = Some(tr)),
-            Some(tr) => tr.push(imm, t, est),
-        };
-        res.map_err(|e| imm_failure(&e, 0, &self.times))
-    }
-
-    /// Smooths the record: one smoothed IMM estimate per step (rows of one time share it).
-    ///
-    /// # Errors
-    /// [`Failure`] at the failed step.
-    pub(super) fn smooth<F: SmoothingFilter<4>>(
-        mut self,
-        imm: &Imm<F, 4, R>,
-        how: Smoothing,
-    ) -> Result<Vec<ImmSmoothed<4, R>>, Failure> {
-        self.flush(imm)?;
-        let Some(track) = &self.track else {
-            return Ok(Vec::new());
-        };
-        let times = &self.times;
-        let steps = track.steps();
-        by_windows(times, how, |j, k| {
-            argus_imm::imm_smooth(
-                track.markov(),
-                argus_imm::PairWeights::default(),
-                &steps[j..=k],
-            )
-            .map_err(|e| imm_failure(&e, j, times))
-        })
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -410,43 +330,5 @@ mod tests {
             cli.starts_with("smoothing track 7: step 5 (t = 1 s)"),
             "{cli}"
         );
-    }
-
-    #[test]
-    fn the_imm_record_keeps_one_step_per_time() {
-        use argus_imm::{Imm, ImmEstimate, MarkovMatrix};
-        let imm = Imm::new(
-            [
-                Kf::new(Cv2D::discrete(0.1).unwrap()),
-                Kf::new(Cv2D::discrete(3.0).unwrap()),
-            ],
-            MarkovMatrix::new([[0.9, 0.1], [0.1, 0.9]]).unwrap(),
-        )
-        .unwrap();
-        let pos = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 400.0).unwrap();
-        let (_, rows) = forward();
-        let mut est = ImmEstimate::from_common(rows[0].1, [0.5, 0.5]).unwrap();
-        let mut rec = ImmRecorder::new(*imm.markov());
-        rec.record(&imm, 0.0, est).unwrap();
-        let mut t = 0.0;
-        // Plots at 2, 4, 4 (one instant twice), 7 s.
-        for (tn, off) in [(2.0, 0.0), (4.0, 1.0), (4.0, 2.0), (7.0, 3.0)] {
-            let z = Vector::<2>::new(10.0 * tn + off, -5.0 * tn);
-            est = if tn > t {
-                imm.step(&est, tn - t, &pos, &z).unwrap().estimate
-            } else {
-                imm.update(&est.into_prediction(), &pos, &z)
-                    .unwrap()
-                    .estimate
-            };
-            t = tn;
-            rec.record(&imm, t, est).unwrap();
-        }
-        let last = est.combined().unwrap();
-        let sm = rec.smooth(&imm, Smoothing::Interval).unwrap();
-        // Four times, four steps; the last is the filter's (the second update at 4 s
-        // is the step's estimate).
-        assert_eq!(sm.len(), 4);
-        assert_eq!(sm[3].combined, last);
     }
 }
