@@ -22,6 +22,7 @@ mod single;
 mod single_aircraft;
 mod single_dim;
 mod single_imm;
+mod single_smooth;
 mod smooth;
 mod smooth_aircraft;
 mod smooth_imm;

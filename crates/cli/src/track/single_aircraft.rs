@@ -13,7 +13,8 @@ use argus_imm::{AircraftEstimate, AircraftRadar, AircraftSmoothed, AircraftTunin
 use argus_sensors::{Measurement, RadarNoise};
 
 use super::rows::{Column, Point, TrackRows};
-use super::smooth::{self, Failure};
+use super::single_smooth::smooth_run;
+use super::smooth::Failure;
 use super::smooth_aircraft::AircraftRecorder;
 use super::spec::Sensor;
 use super::start::{Ctx, too_few};
@@ -93,22 +94,16 @@ pub(super) fn run(
         }
         out.push((t, est, i));
     }
-    let smoothed = match (record, ctx.smoothing) {
-        (Some(r), Some(how)) => Some(r.smooth(&imm, how).map_err(fail)?),
-        _ => None,
-    };
+    let times: Vec<f64> = out.iter().map(|o| o.0).collect();
+    let smoothed = smooth_run(record, &imm, ctx.smoothing, &times)?;
     let mut columns = Column::single(2, 3, false);
     columns.extend(Column::TURN_RATE);
     if smoothed.is_some() {
         columns.extend(Column::smoothed_single(2, 3));
     }
     let mut rows = TrackRows::with_reference(columns, ctx.reference);
-    let times: Vec<f64> = out.iter().map(|o| o.0).collect();
-    let row_step = smooth::steps(&times).row_step;
     for (k, (t, est, i)) in out.iter().enumerate() {
-        let s = smoothed
-            .as_ref()
-            .and_then(|s| row_step.get(k).and_then(|&j| s.get(j)));
+        let s = smoothed.as_ref().and_then(|s| s.at(k));
         // The plot of the row (for an error's line).
         let p = &plots[*i];
         push(&mut rows, *t, est, s).map_err(ctx.imm_error(p))?;

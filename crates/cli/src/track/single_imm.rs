@@ -27,7 +27,8 @@ use argus_motion_models::PlanarModel;
 use argus_sensors::Measurement;
 
 use super::rows::{Column, Point, TrackRows};
-use super::smooth::{self, Failure};
+use super::single_smooth::smooth_run;
+use super::smooth::Failure;
 use super::smooth_imm::ImmRecorder;
 use super::spec::{ImmSpec, MAX_MODELS, MultiSpec};
 use super::start::{Ctx, too_few, two_point};
@@ -148,21 +149,15 @@ fn track_imm<const R: usize>(
         }
         out.push((t, c, est.mode_probabilities()));
     }
-    let smoothed = match (record, ctx.smoothing) {
-        (Some(r), Some(how)) => Some(r.smooth(&imm, how).map_err(fail)?),
-        _ => None,
-    };
+    let times: Vec<f64> = out.iter().map(|o| o.0).collect();
+    let smoothed = smooth_run(record, &imm, ctx.smoothing, &times)?;
     let mut columns = Column::single(2, R, false);
     if smoothed.is_some() {
         columns.extend(Column::smoothed_single(2, R));
     }
     let mut rows = TrackRows::with_reference(columns, ctx.reference);
-    let times: Vec<f64> = out.iter().map(|o| o.0).collect();
-    let row_step = smooth::steps(&times).row_step;
     for (i, (t, c, mu)) in out.iter().enumerate() {
-        let s = smoothed
-            .as_ref()
-            .and_then(|s| row_step.get(i).and_then(|&k| s.get(k)));
+        let s = smoothed.as_ref().and_then(|s| s.at(i));
         rows.push(
             &Point::new(*t, c)
                 .modes(Some(mu))
@@ -270,21 +265,15 @@ fn track_multi_k<const R: usize, const K: usize>(
         }
         out.push((t, c, est.mode_probabilities(), *est.reference()));
     }
-    let smoothed = match (record, ctx.smoothing) {
-        (Some(r), Some(how)) => Some(r.smooth(multi.imm(), how).map_err(fail)?),
-        _ => None,
-    };
+    let times: Vec<f64> = out.iter().map(|o| o.0).collect();
+    let smoothed = smooth_run(record, multi.imm(), ctx.smoothing, &times)?;
     let mut columns = Column::single(2, R, true);
     if smoothed.is_some() {
         columns.extend(Column::smoothed_single(2, R));
     }
     let mut rows = TrackRows::with_reference(columns, ctx.reference);
-    let times: Vec<f64> = out.iter().map(|o| o.0).collect();
-    let row_step = smooth::steps(&times).row_step;
     for (i, (t, c, mu, noise)) in out.iter().enumerate() {
-        let s = smoothed
-            .as_ref()
-            .and_then(|s| row_step.get(i).and_then(|&k| s.get(k)));
+        let s = smoothed.as_ref().and_then(|s| s.at(i));
         rows.push(
             &Point::new(*t, c)
                 .modes(Some(mu))

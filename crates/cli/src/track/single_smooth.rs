@@ -1,0 +1,42 @@
+//! The smoothing of a single-target run (`imm`, `multi-imm`, `aircraft-imm` with
+//! `--smooth` / `--smooth-lag`): its recorded forward pass smoothed once the plots are
+//! done, and each row given its step's smoothed estimate (rows of one time are one step,
+//! [`smooth::steps`]).
+
+use super::mode_record::{ModeRecorder, ModeTrack};
+use super::smooth::{self, Failure, Smoothing};
+use crate::error::CliError;
+
+/// A run's smoothed steps, and the step of each row.
+pub(super) struct SmoothedRun<S> {
+    steps: Vec<S>,
+    row_step: Vec<usize>,
+}
+
+impl<S> SmoothedRun<S> {
+    /// The smoothed estimate of row `i` (its step's), if any.
+    pub(super) fn at(&self, i: usize) -> Option<&S> {
+        self.row_step.get(i).and_then(|&k| self.steps.get(k))
+    }
+}
+
+/// With smoothing (`how`), the record `record` of `imm` smoothed, for the rows of times
+/// `times` (the run's one track is track 1); `None` without.
+///
+/// # Errors
+/// [`CliError::Smooth`] for a step that cannot be smoothed.
+pub(super) fn smooth_run<T: ModeTrack<M, Estimate = E>, M, E>(
+    record: Option<ModeRecorder<T, E>>,
+    imm: &M,
+    how: Option<Smoothing>,
+    times: &[f64],
+) -> Result<Option<SmoothedRun<T::Smoothed>>, CliError> {
+    let steps = match (record, how) {
+        (Some(r), Some(how)) => r.smooth(imm, how).map_err(|f: Failure| f.into_cli(1))?,
+        _ => return Ok(None),
+    };
+    Ok(Some(SmoothedRun {
+        steps,
+        row_step: smooth::steps(times).row_step,
+    }))
+}
