@@ -158,6 +158,22 @@ echo "$array $merge" > .jobs
         )
     }
 
+    /// The end of a Kubernetes Job's pod template: its container mounts the shared
+    /// volume ([`Self::k8s_pvc`]'s claim) at `/shared`.
+    fn shared_volume(&self) -> String {
+        format!(
+            r#"          volumeMounts:
+            - name: shared
+              mountPath: /shared
+      volumes:
+        - name: shared
+          persistentVolumeClaim:
+            claimName: {name}-shared
+"#,
+            name = self.job_name(),
+        )
+    }
+
     fn k8s_shards(&self) -> String {
         let cmd = format!(
             "exec argus {} --out /shared/shard-\"$JOB_COMPLETION_INDEX\"",
@@ -190,20 +206,14 @@ spec:
           resources:
             requests:
               cpu: "1"
-          volumeMounts:
-            - name: shared
-              mountPath: /shared
-      volumes:
-        - name: shared
-          persistentVolumeClaim:
-            claimName: {name}-shared
-"#,
+{volume}"#,
             sc = self.scenario,
             a = self.runs.start,
             b = self.runs.end,
             k = self.shards,
             backoff = 3 * self.shards,
             name = self.job_name(),
+            volume = self.shared_volume(),
             image = yaml_str(self.image),
             cmd = yaml_str(&cmd),
         )
@@ -232,18 +242,12 @@ spec:
           command: ["sh", "-c"]
           args:
             - {cmd}
-          volumeMounts:
-            - name: shared
-              mountPath: /shared
-      volumes:
-        - name: shared
-          persistentVolumeClaim:
-            claimName: {name}-shared
-"#,
+{volume}"#,
             k = self.shards,
             name = self.job_name(),
             image = yaml_str(self.image),
             cmd = yaml_str(&cmd),
+            volume = self.shared_volume(),
         )
     }
 
