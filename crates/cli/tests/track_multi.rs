@@ -12,47 +12,12 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal, Poisson};
 
 mod common;
+use common::tracker_run::{self, Run, assert_config_error};
 use common::{Row, argus, num, rows as parse_rows};
-
-/// What one `argus track` run gave.
-struct Run {
-    code: Option<i32>,
-    stderr: String,
-    /// The tracks CSV (empty when not written).
-    csv: String,
-    /// The summary (Null when not written).
-    summary: serde_json::Value,
-}
 
 /// Runs `argus track --config multi.toml --plots plots.csv --out tracks.csv` in `dir`.
 fn track(dir: &Path, config: &str, plots: &str) -> Run {
-    std::fs::write(dir.join("multi.toml"), config).unwrap();
-    std::fs::write(dir.join("plots.csv"), plots).unwrap();
-    let _ = std::fs::remove_file(dir.join("tracks.csv"));
-    let _ = std::fs::remove_file(dir.join("tracks.summary.json"));
-    let o = argus(
-        &[
-            "track",
-            "--config",
-            "multi.toml",
-            "--plots",
-            "plots.csv",
-            "--out",
-            "tracks.csv",
-        ],
-        dir,
-    );
-    let csv = std::fs::read_to_string(dir.join("tracks.csv")).unwrap_or_default();
-    let summary = std::fs::read_to_string(dir.join("tracks.summary.json"))
-        .map_or(serde_json::Value::Null, |s| {
-            serde_json::from_str(&s).unwrap()
-        });
-    Run {
-        code: o.status.code(),
-        stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
-        csv,
-        summary,
-    }
+    tracker_run::run(dir, "multi.toml", config, plots)
 }
 
 /// A polar radar at the origin, σr = 50 m, σθ = 0.06° (≈ 1 mrad), and the tables given.
@@ -341,16 +306,6 @@ fn clutter_alone_never_confirms_under_3_of_4() {
 
 /// Asserts exit code 2, that stderr names `at` (file:line) and the field, and that no
 /// tracks file was written.
-fn assert_config_error(run: &Run, at: &str, field: &str) {
-    assert_eq!(run.code, Some(2), "{}", run.stderr);
-    assert!(
-        run.stderr.contains(&format!("{at}: field '{field}'")),
-        "expected {at} and field '{field}' in: {}",
-        run.stderr
-    );
-    assert!(run.csv.is_empty(), "nothing written on error");
-}
-
 #[test]
 fn config_errors_name_file_line_and_field() {
     let dir = tempfile::tempdir().unwrap();

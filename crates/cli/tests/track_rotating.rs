@@ -15,6 +15,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
 mod common;
+use common::tracker_run::{self, Run, assert_config_error};
 use common::{Row, argus, num, rows as parse_rows};
 
 const P: f64 = 5.0;
@@ -132,40 +133,9 @@ fn plots(seed: u64, ac: &[Aircraft]) -> (String, Vec<Vec<f64>>) {
     (s, crossings)
 }
 
-struct Run {
-    code: Option<i32>,
-    stderr: String,
-    csv: String,
-    summary: serde_json::Value,
-}
-
+/// Runs `argus track --config rot.toml --plots plots.csv --out tracks.csv` in `dir`.
 fn track(dir: &Path, config: &str, plots: &str) -> Run {
-    std::fs::write(dir.join("rot.toml"), config).unwrap();
-    std::fs::write(dir.join("plots.csv"), plots).unwrap();
-    let _ = std::fs::remove_file(dir.join("tracks.csv"));
-    let o = argus(
-        &[
-            "track",
-            "--config",
-            "rot.toml",
-            "--plots",
-            "plots.csv",
-            "--out",
-            "tracks.csv",
-        ],
-        dir,
-    );
-    let csv = std::fs::read_to_string(dir.join("tracks.csv")).unwrap_or_default();
-    let summary = std::fs::read_to_string(dir.join("tracks.summary.json"))
-        .map_or(serde_json::Value::Null, |s| {
-            serde_json::from_str(&s).unwrap()
-        });
-    Run {
-        code: o.status.code(),
-        stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
-        csv,
-        summary,
-    }
+    tracker_run::run(dir, "rot.toml", config, plots)
 }
 
 fn example() -> String {
@@ -255,16 +225,6 @@ fn the_real_traffic_example_tracks_every_aircraft_on_a_rotating_radar() {
 
 /// Asserts exit code 2, that stderr names `at` (file:line) and the field, and that no
 /// tracks file was written.
-fn assert_config_error(run: &Run, at: &str, field: &str) {
-    assert_eq!(run.code, Some(2), "{}", run.stderr);
-    assert!(
-        run.stderr.contains(&format!("{at}: field '{field}'")),
-        "expected {at} and field '{field}' in: {}",
-        run.stderr
-    );
-    assert!(run.csv.is_empty(), "nothing written on error");
-}
-
 #[test]
 fn bad_rotating_sensor_keys_name_their_line() {
     let dir = tempfile::tempdir().unwrap();
