@@ -17,7 +17,7 @@ use argus_sim::{
 use rand::RngExt;
 
 mod common;
-use common::{argus, simulate_gimpo};
+use common::{argus, assert_error, col, simulate_gimpo};
 
 /// `docs/examples/aircraft.toml` in the repository.
 fn example() -> PathBuf {
@@ -99,10 +99,6 @@ fn table(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
         })
         .collect();
     (head, rows)
-}
-
-fn col(head: &[String], name: &str) -> usize {
-    head.iter().position(|h| h == name).unwrap()
 }
 
 /// Position errors² of a single-target tracks file against `truth` (`t → [x, y]`),
@@ -398,16 +394,6 @@ fn tracker_equals_single_target(sensor: &str) {
             let (a, b) = (r[x + k], s[sx + k]);
             assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{a} vs {b}");
         }
-    }
-}
-
-/// Asserts exit code 2 and one `error:` line containing `needles`.
-fn assert_error(code: Option<i32>, err: &str, needles: &[&str]) {
-    assert_eq!(code, Some(2), "{err}");
-    assert!(!err.contains("panicked"), "{err}");
-    assert_eq!(err.lines().count(), 1, "one message expected: {err}");
-    for n in needles {
-        assert!(err.contains(n), "missing '{n}' in: {err}");
     }
 }
 

@@ -7,7 +7,7 @@
 use std::path::Path;
 
 mod common;
-use common::argus;
+use common::{argus, assert_error, col, simulate_gimpo};
 
 /// The paper's IMM (seed 000 eqs (15)–(20)) for a radar with the given σ.
 fn config(kind: &str, sigma_range: f64, sigma_az_deg: f64, extra: &str) -> String {
@@ -33,16 +33,6 @@ markov = [
 {extra}
 "#
     )
-}
-
-/// Simulates gimpo plots (seed `seed`) into `dir/sim.csv`.
-fn simulate(dir: &Path, seed: u64) {
-    let s = seed.to_string();
-    let o = argus(
-        &["simulate", "gimpo", "--seed", &s, "--out", "sim.csv"],
-        dir,
-    );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 /// Runs `argus track` with `cfg` on `plots`; returns (exit code, stderr, tracks text).
@@ -84,14 +74,10 @@ fn table(text: &str) -> (Vec<String>, Vec<Vec<f64>>) {
     (head, rows)
 }
 
-fn col(head: &[String], name: &str) -> usize {
-    head.iter().position(|h| h == name).unwrap()
-}
-
 #[test]
 fn imm_track_has_mode_probabilities_that_follow_the_turn() {
     let dir = tempfile::tempdir().unwrap();
-    simulate(dir.path(), 4);
+    simulate_gimpo(dir.path(), 4);
     let (code, err, text) = track(dir.path(), &config("imm", 70.0, 0.08, ""), "sim.csv");
     assert_eq!(code, Some(0), "{err}");
     let (head, rows) = table(&text);
@@ -137,7 +123,7 @@ fn imm_track_has_mode_probabilities_that_follow_the_turn() {
 #[test]
 fn multi_imm_track_estimates_the_noise() {
     let dir = tempfile::tempdir().unwrap();
-    simulate(dir.path(), 5);
+    simulate_gimpo(dir.path(), 5);
     let s2 = 2f64.sqrt();
     let cfg = config(
         "multi-imm",
@@ -191,16 +177,6 @@ fn multi_imm_track_estimates_the_noise() {
         ratio_r < 1.8 && ratio_a < 1.8,
         "{ratio_r}, {ratio_a} from 2.0"
     );
-}
-
-/// Asserts exit code 2 and one `error:` line containing `needles`.
-fn assert_error(code: Option<i32>, err: &str, needles: &[&str]) {
-    assert_eq!(code, Some(2), "{err}");
-    assert!(!err.contains("panicked"), "{err}");
-    assert_eq!(err.lines().count(), 1, "one message expected: {err}");
-    for n in needles {
-        assert!(err.contains(n), "missing '{n}' in: {err}");
-    }
 }
 
 #[test]

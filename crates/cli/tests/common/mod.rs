@@ -87,6 +87,27 @@ pub(crate) fn num(r: &Row, k: &str) -> f64 {
         .unwrap_or_else(|| panic!("column {k}: {:?}", r.get(k)))
 }
 
+/// The index of column `name` in a CSV header.
+///
+/// # Panics
+/// When the header has no such column (a test failure).
+#[allow(clippy::unwrap_used, dead_code)]
+pub(crate) fn col(head: &[String], name: &str) -> usize {
+    head.iter().position(|h| h == name).unwrap()
+}
+
+/// A refused command: exit code 2, one line of stderr naming every one of `needles`, no
+/// panic.
+#[allow(dead_code)]
+pub(crate) fn assert_error(code: Option<i32>, err: &str, needles: &[&str]) {
+    assert_eq!(code, Some(2), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(err.lines().count(), 1, "one message expected: {err}");
+    for n in needles {
+        assert!(err.contains(n), "missing '{n}' in: {err}");
+    }
+}
+
 /// Runs `argus simulate gimpo --seed <seed>` in `dir`: plots `dir/sim.csv`, truth
 /// `dir/sim.truth.csv`.
 ///
