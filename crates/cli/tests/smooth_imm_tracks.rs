@@ -14,7 +14,8 @@ use argus_motion_models::Cv2D;
 use argus_sensors::CartesianPosition;
 
 mod common;
-use common::{Row, num, rows, track};
+use common::smoothed_track::{compare_smoothed, relative_difference, the_track};
+use common::{num, rows, track};
 
 /// The IMM's parameters, the same in every configuration below.
 const SIGMA_LOW: f64 = 0.5;
@@ -87,18 +88,6 @@ fn write_plots(path: &Path, miss_at: Option<usize>) -> Vec<(f64, Option<Vector<2
     scans
 }
 
-/// The rows of the scene's one confirmed track (track 0), deleted row excluded.
-fn the_track(csv: &str) -> Vec<Row> {
-    let all = rows(csv);
-    assert!(
-        all.iter()
-            .all(|r| r["track"] == "0" || r["status"] != "confirmed")
-    );
-    all.into_iter()
-        .filter(|r| r["track"] == "0" && r["status"] != "deleted")
-        .collect()
-}
-
 /// |a − b| ≤ tol · max(1, |b|).
 fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol * b.abs().max(1.0)
@@ -128,29 +117,12 @@ fn a_gnn_imm_track_smooths_as_the_single_target_imm_of_its_plots() {
     assert_eq!(multi.len(), single.len());
     assert_eq!(multi.len(), target().len() - 1);
     let mut worst = 0.0_f64;
-    for (m, s) in multi.iter().zip(&single) {
-        assert_eq!(m["t"], s["t"]);
-        // The single-target rows have variances; the tracker's σ.
-        let s_sigma = |k: &str| num(s, k).sqrt();
-        let pairs = [
-            (num(m, "x"), num(s, "x")),
-            (num(m, "vy"), num(s, "vy")),
-            (num(m, "xs"), num(s, "xs")),
-            (num(m, "vxs"), num(s, "vxs")),
-            (num(m, "ys"), num(s, "ys")),
-            (num(m, "vys"), num(s, "vys")),
-            (num(m, "sigma_xs"), s_sigma("var_xs")),
-            (num(m, "sigma_ys"), s_sigma("var_ys")),
-            (num(m, "mu_1s"), num(s, "mu_1s")),
-            (num(m, "mu_2s"), num(s, "mu_2s")),
-        ];
-        for (a, b) in pairs {
-            // 1e-9 relative: two evaluations of the same arithmetic (the tracker's
-            // IMM and the single-target one), printed at full precision.
-            assert!(close(a, b, 1e-9), "t = {}: {a} against {b}", m["t"]);
-            worst = worst.max((a - b).abs() / b.abs().max(1.0));
-        }
-    }
+    compare_smoothed(&multi, &single, &["x", "vy"], 2, |m, a, b| {
+        // 1e-9 relative: two evaluations of the same arithmetic (the tracker's IMM and
+        // the single-target one), printed at full precision.
+        assert!(close(a, b, 1e-9), "t = {}: {a} against {b}", m["t"]);
+        worst = worst.max(relative_difference(a, b));
+    });
     // Both sides can fail: the smoothed track is not the filtered one (the turn).
     let moved = multi
         .iter()

@@ -8,7 +8,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 mod common;
-use common::{Row, num, rmse_pair, rows, simulate_gimpo, track};
+use common::{Row, num, rmse_pair, rows, simulate_gimpo, smoothed_track, track};
 
 const SENSOR: &str =
     "[[sensor]]\nid = 1\nposition = [0.0, 0.0]\nsigma_range = 70.0\nsigma_azimuth_deg = 0.08\n\n";
@@ -30,47 +30,20 @@ fn tracker() -> String {
 /// The rows of the scene's one confirmed track (track 0), deleted row excluded (seed 4
 /// also starts a tentative track that is never confirmed, and so not smoothed).
 fn the_track(csv: &str) -> Vec<Row> {
-    let all = rows(csv);
+    let track = smoothed_track::the_track(csv);
     assert!(
-        all.iter()
-            .all(|r| r["track"] == "0" || r["status"] != "confirmed")
-    );
-    assert!(
-        all.iter()
+        rows(csv)
+            .iter()
             .filter(|r| r["track"] != "0")
             .all(|r| r["xs"].is_empty())
     );
-    all.into_iter()
-        .filter(|r| r["track"] == "0" && r["status"] != "deleted")
-        .collect()
+    track
 }
 
 /// The worst relative difference between the tracker's filtered and smoothed columns
 /// and the single-target ones, row by row.
 fn worst_difference(multi: &[Row], single: &[Row]) -> f64 {
-    assert_eq!(multi.len(), single.len());
-    let mut worst = 0.0_f64;
-    for (m, s) in multi.iter().zip(single) {
-        assert_eq!(m["t"], s["t"]);
-        let s_sigma = |k: &str| num(s, k).sqrt();
-        let pairs = [
-            (num(m, "x"), num(s, "x")),
-            (num(m, "sigma_range"), num(s, "sigma_range")),
-            (num(m, "xs"), num(s, "xs")),
-            (num(m, "vxs"), num(s, "vxs")),
-            (num(m, "ys"), num(s, "ys")),
-            (num(m, "vys"), num(s, "vys")),
-            (num(m, "sigma_xs"), s_sigma("var_xs")),
-            (num(m, "sigma_ys"), s_sigma("var_ys")),
-            (num(m, "mu_1s"), num(s, "mu_1s")),
-            (num(m, "mu_2s"), num(s, "mu_2s")),
-        ];
-        for (a, b) in pairs {
-            assert!(a.is_finite() && b.is_finite());
-            worst = worst.max((a - b).abs() / b.abs().max(1.0));
-        }
-    }
-    worst
+    smoothed_track::worst_difference(multi, single, &["x", "sigma_range"], 2)
 }
 
 #[test]

@@ -4,6 +4,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::{Command, Output};
 
+pub(crate) mod smoothed_track;
 pub(crate) mod tracker_run;
 
 /// Runs the real `argus` binary with `args` in `cwd`.
