@@ -7,7 +7,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 mod common;
-use common::{Row, num, rmse_pair, rows, simulate_gimpo, smoothed_track, track};
+use common::{Row, gimpo_rmse_pair, num, rows, simulate_gimpo, smoothed_track, track};
 
 const SENSOR: &str =
     "[[sensor]]\nid = 1\nposition = [0.0, 0.0]\nsigma_range = 70.0\nsigma_azimuth_deg = 0.08\n\n";
@@ -93,21 +93,13 @@ fn a_gnn_aircraft_track_smooths_as_the_single_target_aircraft_imm() {
         }
     }
     // A lag as long as the track is the fixed-interval smoother.
-    let (_, _, interval) = track(d, &single(), &plots, &["--smooth"]);
-    let (code, err, lag) = track(d, &single(), &plots, &["--smooth-lag", "10000"]);
-    assert_eq!(code, Some(0), "{err}");
-    assert_eq!(interval, lag);
+    smoothed_track::long_lag_is_interval(d, &single(), &plots, "10000");
 }
 
 #[test]
 fn the_smoothed_aircraft_track_is_closer_to_the_truth() {
     let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
-    simulate_gimpo(d, 4);
-    let (code, err, csv) = track(d, &single(), &d.join("sim.csv"), &["--smooth"]);
-    assert_eq!(code, Some(0), "{err}");
-    let (f, s) = rmse_pair(&csv, d);
-    println!("gimpo seed 4: position RMSE filtered {f:.1} m, smoothed {s:.1} m");
+    let (f, s) = gimpo_rmse_pair(dir.path(), &single());
     // Measured: filtered 53.9 m, smoothed 27.5 m, ratio 0.510. Bound: 0.51 ± 0.1,
     // two-sided (one flight: the margin is for changes of the forward filter's round-off
     // and tuning, not for a smoother that stops helping).

@@ -149,3 +149,18 @@ pub(crate) fn rmse_pair(csv: &str, dir: &Path) -> (f64, f64) {
     }
     ((f / n).sqrt(), (s / n).sqrt())
 }
+
+/// gimpo seed 4 (simulated into `dir`) tracked with `config` and `--smooth`: the
+/// [`rmse_pair`] of its tracks, printed.
+///
+/// # Panics
+/// When a command fails (a test failure), with its stderr.
+#[allow(dead_code)]
+pub(crate) fn gimpo_rmse_pair(dir: &Path, config: &str) -> (f64, f64) {
+    simulate_gimpo(dir, 4);
+    let (code, err, csv) = track(dir, config, &dir.join("sim.csv"), &["--smooth"]);
+    assert_eq!(code, Some(0), "{err}");
+    let (f, s) = rmse_pair(&csv, dir);
+    println!("gimpo seed 4: position RMSE filtered {f:.1} m, smoothed {s:.1} m");
+    (f, s)
+}

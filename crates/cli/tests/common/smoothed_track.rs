@@ -1,11 +1,14 @@
-//! The tracker's smoothed track checked row by row against the single-target smoother
-//! of the same plots (tests/smooth_imm_tracks.rs, smooth_aircraft_tracks.rs,
-//! smooth_multi_imm_tracks.rs).
+//! Checks of smoothed tracks (tests/smooth_imm_tracks.rs, smooth_aircraft_tracks.rs,
+//! smooth_multi_imm_tracks.rs): the tracker's smoothed track row by row against the
+//! single-target smoother of the same plots, and a lag as long as the track against the
+//! fixed-interval smoother.
 
 // Each test binary uses a part of these helpers.
 #![allow(dead_code)]
 
-use super::{Row, num, rows};
+use std::path::Path;
+
+use super::{Row, num, rows, track};
 
 /// The rows of the scene's one confirmed track (track 0), deleted row excluded; asserts
 /// that no other track was confirmed.
@@ -65,4 +68,15 @@ pub(crate) fn worst_difference(multi: &[Row], single: &[Row], same: &[&str], mod
         worst = worst.max(relative_difference(a, b));
     });
     worst
+}
+
+/// Runs `argus track` with `config` over `plots` in `dir` with `--smooth` and with
+/// `--smooth-lag <lag>` (a lag as long as the track), asserts the second succeeds and
+/// writes the same tracks as the first, and returns them.
+pub(crate) fn long_lag_is_interval(dir: &Path, config: &str, plots: &Path, lag: &str) -> String {
+    let (_, _, interval) = track(dir, config, plots, &["--smooth"]);
+    let (code, err, lag) = track(dir, config, plots, &["--smooth-lag", lag]);
+    assert_eq!(code, Some(0), "{err}");
+    assert_eq!(interval, lag);
+    interval
 }
