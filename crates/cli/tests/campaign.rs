@@ -7,17 +7,7 @@
 use std::path::Path;
 
 mod common;
-use common::argus;
-
-fn ok(args: &[&str], dir: &Path) -> String {
-    let o = argus(args, dir);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
+use common::{argus, ok, read};
 
 /// The one-line error of a failing command (exit code 2).
 fn fails(args: &[&str], dir: &Path) -> String {
@@ -26,10 +16,6 @@ fn fails(args: &[&str], dir: &Path) -> String {
     let e = String::from_utf8_lossy(&o.stderr).into_owned();
     assert_eq!(e.lines().count(), 1, "one message: {e}");
     e
-}
-
-fn read(dir: &Path, f: &str) -> String {
-    std::fs::read_to_string(dir.join(f)).unwrap()
 }
 
 fn json(dir: &Path, f: &str) -> serde_json::Value {

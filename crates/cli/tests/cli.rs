@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::argus;
+use common::{argus, ok, read};
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
@@ -221,7 +221,7 @@ fn failed_run_keeps_previous_output() {
 #[test]
 fn run_cv_polar_small_campaign_writes_everything() {
     let dir = tempfile::tempdir().unwrap();
-    let o = argus(
+    let stdout = ok(
         &[
             "run",
             "cv-polar",
@@ -236,9 +236,6 @@ fn run_cv_polar_small_campaign_writes_everything() {
         ],
         dir.path(),
     );
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success(), "{err}");
-    let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("ANEES (time average)"), "{stdout}");
     for f in ["summary.json", "per_step.csv", "rmse_pos.svg", "anees.svg"] {
         assert!(dir.path().join("res").join(f).exists(), "{f} missing");
@@ -261,13 +258,12 @@ fn cv_polar_is_consistent_on_a_reduced_campaign() {
     // lie in the per-step 95 % interval of 40 runs of a 4-dim NEES, χ²₁₆₀(0.025, 0.975)/40
     // = [3.16, 4.94] (a time average varies less than one step, so this is conservative).
     let dir = tempfile::tempdir().unwrap();
-    let o = argus(
+    ok(
         &[
             "run", "cv-polar", "--runs", "40", "--seed", "11", "--out", "r",
         ],
         dir.path(),
     );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let json = std::fs::read_to_string(dir.path().join("r/summary.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     let anees = v["results"]["anees"]["ours"].as_f64().unwrap();
@@ -280,7 +276,7 @@ fn cv_polar_is_consistent_on_a_reduced_campaign() {
 #[test]
 fn simulate_then_track_round_trip() {
     let dir = tempfile::tempdir().unwrap();
-    let o = argus(
+    ok(
         &[
             "simulate",
             "cv-polar",
@@ -293,13 +289,12 @@ fn simulate_then_track_round_trip() {
         ],
         dir.path(),
     );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let plots = std::fs::read_to_string(dir.path().join("sim.csv")).unwrap();
     // duration 20 s, period 2 s, P_D = 1: 11 plots + header.
     assert_eq!(plots.lines().count(), 12, "{plots}");
     assert!(dir.path().join("sim.truth.csv").exists());
     // The same seed gives the same file.
-    let o = argus(
+    ok(
         &[
             "simulate",
             "cv-polar",
@@ -312,13 +307,12 @@ fn simulate_then_track_round_trip() {
         ],
         dir.path(),
     );
-    assert!(o.status.success());
     assert_eq!(
         std::fs::read_to_string(dir.path().join("sim2.csv")).unwrap(),
         plots
     );
     write(dir.path(), "filter.toml", CONFIG);
-    let o = argus(
+    ok(
         &[
             "track",
             "--config",
@@ -330,22 +324,6 @@ fn simulate_then_track_round_trip() {
         ],
         dir.path(),
     );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-}
-
-/// Runs `argus` in `dir` and asserts success; returns stdout.
-fn ok(args: &[&str], dir: &Path) -> String {
-    let o = argus(args, dir);
-    assert!(
-        o.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn read(dir: &Path, f: &str) -> String {
-    std::fs::read_to_string(dir.join(f)).unwrap()
 }
 
 #[test]

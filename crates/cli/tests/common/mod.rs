@@ -20,6 +20,30 @@ pub(crate) fn argus(args: &[&str], cwd: &Path) -> Output {
         .unwrap()
 }
 
+/// Runs `argus` with `args` in `dir` and asserts success; returns stdout.
+///
+/// # Panics
+/// When the command fails (a test failure), with its arguments and stderr.
+#[allow(dead_code)]
+pub(crate) fn ok(args: &[&str], dir: &Path) -> String {
+    let o = argus(args, dir);
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// The text of the file `f` in `dir`.
+///
+/// # Panics
+/// When it cannot be read (a test failure).
+#[allow(clippy::unwrap_used, dead_code)]
+pub(crate) fn read(dir: &Path, f: &str) -> String {
+    std::fs::read_to_string(dir.join(f)).unwrap()
+}
+
 /// Runs `argus track` with `config` (text, written to `dir/c.toml`) over `plots` and
 /// `extra` flags: exit code, stderr, the tracks CSV (`dir/t.csv`; empty when not written).
 ///
