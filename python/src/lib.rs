@@ -1,16 +1,17 @@
 //! `argus_tracking._native`: the Rust side of the `argus_tracking` Python package (see
-//! `python/argus_tracking/__init__.py` for the public API and `python/README.md`).
+//! `python/argus_tracking/__init__.py` for the public API and `python/README.md`). Its
+//! modules are private (`cargo doc --document-private-items` shows them):
 //!
-//! - [`filters`]: `KalmanFilter`, `ExtendedKalmanFilter`, `UnscentedKalmanFilter`
-//!   ([`filter_build`] makes them, [`filter_core`] runs them, [`memo_run`] is the KF's
+//! - `filters`: `KalmanFilter`, `ExtendedKalmanFilter`, `UnscentedKalmanFilter`
+//!   (`filter_build` makes them, `filter_core` runs them, `memo_run` is the KF's
 //!   batch run reusing its covariance recursion).
-//! - [`imm`]: `Imm`, `MultiImm`, `DifferenceImm`.
-//! - [`track`]: `argus track`'s pipeline on files and as a stream.
-//! - [`scenarios`]: the scenario list and campaigns.
-//! - [`metrics`]: NEES / NIS, chi-square intervals, OSPA, GOSPA.
-//! - [`score`]: the real-traffic track scoring (`argus score`).
-//! - [`errors`]: Rust errors as the package's Python exceptions.
-//! - [`arrays`]: numpy arrays in (checked, named) and out.
+//! - `imm`: `Imm`, `MultiImm`, `DifferenceImm`.
+//! - `track`: `argus track`'s pipeline on files and as a stream.
+//! - `scenarios`: the scenario list and campaigns.
+//! - `metrics`: NEES / NIS, chi-square intervals, OSPA, GOSPA.
+//! - `score`: the real-traffic track scoring (`argus score`).
+//! - `errors`: Rust errors as the package's Python exceptions.
+//! - `arrays`: numpy arrays in (checked, named) and out.
 
 mod arrays;
 mod errors;

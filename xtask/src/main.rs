@@ -1,7 +1,8 @@
 //! Project automation for Argus.
 //!
 //! - `cargo xtask test`: `cargo fmt --all --check`, `cargo clippy --workspace --all-targets -- -D warnings`,
-//!   `cargo test --workspace`, then the Python package's tests: a venv in
+//!   `cargo doc --workspace --no-deps` with `RUSTDOCFLAGS=-D warnings` (no broken or private
+//!   intra-doc link), `cargo test --workspace`, then the Python package's tests: a venv in
 //!   `<target>/py-venv` with `python/requirements-test.txt`, `pip install ./python` (the
 //!   wheel built with the dev profile, reusing the test build), `pytest python/tests` (with
 //!   the `argus` binary and the `asterix_json` example of argus-asterix built for them) —
@@ -84,6 +85,12 @@ fn test() -> Result<(), String> {
         "-D",
         "warnings",
     ])?;
+    let cargo_bin = std::env::var_os("CARGO").map_or_else(|| PathBuf::from("cargo"), PathBuf::from);
+    run(
+        &cargo_bin,
+        &["doc", "--workspace", "--no-deps"],
+        &[("RUSTDOCFLAGS", std::ffi::OsStr::new("-D warnings"))],
+    )?;
     cargo(&["test", "--workspace"])?;
     python_tests()
 }

@@ -147,7 +147,7 @@ pub struct NnMoments<const M: usize> {
 ///
 /// (the nearest clutter plot is at radius `r` with density `βn r^{n−1}e^{−βr^n}` and
 /// in a uniform direction, independent of the target's plot). Radius: composite
-/// Gauss–Legendre; directions: [`sphere_nodes`]. At `Σ = I` these are the HYCA
+/// Gauss–Legendre; directions: the quadrature of `sphere_nodes`. At `Σ = I` these are the HYCA
 /// factors `c_T I`, `c_F` of [`hyca_factors`] (tested).
 ///
 /// # Errors

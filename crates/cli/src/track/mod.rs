@@ -44,7 +44,7 @@ use crate::output::write_atomic;
 use crate::plotfile;
 
 /// Runs `argus track`: the configuration at `config` over the plot file `plots_path`
-/// (CSV, or ASTERIX known by content: [`source`]),
+/// (CSV, or ASTERIX known by its content, as the `track::source` module reads it),
 /// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`),
 /// with the smoothed columns when `smoothing` is given. Returns the number of rows written
 /// and the summary's path (multi-target only).

@@ -203,7 +203,8 @@ impl SummarySums {
 }
 
 impl Summary {
-    /// Averages runs of a scenario with `sensors` sensors: a fold through [`SummarySums`].
+    /// Averages runs of a scenario with `sensors` sensors: a fold through the running sums
+    /// of `SummarySums` (the same path as the streamed merge).
     ///
     /// # Errors
     /// [`RegistrationError::Empty`] for no runs or no sensors.
