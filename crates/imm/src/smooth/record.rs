@@ -6,6 +6,7 @@
 use argus_filters::SmoothError;
 
 use super::ImmSmoothError;
+use crate::ImmError;
 
 /// A step of a recorded forward pass.
 pub(crate) trait RecordedStep {
@@ -115,6 +116,18 @@ impl<S: RecordedStep> Record<S> {
     pub(crate) fn fail(&mut self, e: ImmSmoothError) -> ImmSmoothError {
         self.failure = Some(e.clone());
         e
+    }
+
+    /// `result`, or its error recorded (and returned) as the forward pass failing at `step`.
+    ///
+    /// # Errors
+    /// [`ImmSmoothError::ForwardFailed`] with `result`'s error.
+    pub(crate) fn forward<T>(
+        &mut self,
+        step: usize,
+        result: Result<T, ImmError>,
+    ) -> Result<T, ImmSmoothError> {
+        result.map_err(|source| self.fail(ImmSmoothError::ForwardFailed { step, source }))
     }
 
     /// Checks `time` against the latest step (and that nothing failed); returns

@@ -140,8 +140,9 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
     /// its cross covariance (`R²` predictions), and `ln μ̄`.
     ///
     /// # Errors
-    /// [`argus_filters::SmoothError::TimeNotIncreasing`] (inside [`ImmSmoothError::Sequence`]) or
-    /// [`ImmSmoothError::ForwardFailed`] when a mode's prediction fails; both recorded.
+    /// [`argus_filters::SmoothError::TimeNotIncreasing`] (inside
+    /// [`ImmSmoothError::Sequence`]) or [`ImmSmoothError::ForwardFailed`] when a mode's
+    /// prediction fails; both recorded.
     pub fn push<F: SmoothingFilter<N>>(
         &mut self,
         imm: &Imm<F, N, R>,
@@ -149,6 +150,19 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
         estimate: ImmEstimate<N, R>,
     ) -> Result<(), ImmSmoothError> {
         let (step, dt) = self.record.next_interval(time)?;
+        self.append(imm, step, dt, time, estimate)
+    }
+
+    /// Appends `estimate` at `time` as step `step`, `dt` after the latest, with the
+    /// transition from the latest posterior.
+    fn append<F: SmoothingFilter<N>>(
+        &mut self,
+        imm: &Imm<F, N, R>,
+        step: usize,
+        dt: f64,
+        time: f64,
+        estimate: ImmEstimate<N, R>,
+    ) -> Result<(), ImmSmoothError> {
         let transition = self.transition(imm, step, dt)?;
         self.record.push(ImmStep {
             time,
@@ -176,15 +190,10 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
         let mut pairs = [[placeholder; R]; R];
         for (g, row) in prev.modes().iter().zip(pairs.iter_mut()) {
             for (mode, (f, out)) in imm.filters().iter().zip(row.iter_mut()).enumerate() {
-                match f.predict_with_cross(g, dt) {
-                    Ok(tr) => *out = tr,
-                    Err(source) => {
-                        return Err(self.record.fail(ImmSmoothError::ForwardFailed {
-                            step,
-                            source: ImmError::Filter { mode, source },
-                        }));
-                    }
-                }
+                let tr = f
+                    .predict_with_cross(g, dt)
+                    .map_err(|source| ImmError::Filter { mode, source });
+                *out = self.record.forward(step, tr)?;
             }
         }
         // ln μ̄ⱼ = ln Σᵢ πᵢⱼ μᵢ (log-sum-exp over the kept logarithms).
@@ -211,20 +220,9 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
         z: &Vector<M>,
     ) -> Result<ImmUpdate<N, R>, ImmSmoothError> {
         let (step, dt) = self.record.next_interval(time)?;
-        let upd = match imm.step(self.latest(), dt, meas, z) {
-            Ok(u) => u,
-            Err(source) => {
-                return Err(self
-                    .record
-                    .fail(ImmSmoothError::ForwardFailed { step, source }));
-            }
-        };
-        let transition = self.transition(imm, step, dt)?;
-        self.record.push(ImmStep {
-            time,
-            transition: Some(transition),
-            filtered: upd.estimate,
-        });
+        let upd = imm.step(self.latest(), dt, meas, z);
+        let upd = self.record.forward(step, upd)?;
+        self.append(imm, step, dt, time, upd.estimate)?;
         Ok(upd)
     }
 

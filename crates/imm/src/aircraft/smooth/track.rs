@@ -272,14 +272,25 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
         Fct: SmoothingFilter<5>,
     {
         let (step, dt) = self.record.next_interval(time)?;
-        let tr = match transition(imm, self.latest(), dt) {
-            Ok(tr) => tr,
-            Err(source) => {
-                return Err(self
-                    .record
-                    .fail(ImmSmoothError::ForwardFailed { step, source }));
-            }
-        };
+        self.append(imm, step, dt, time, estimate)
+    }
+
+    /// Appends `estimate` at `time` as step `step`, `dt` after the latest, with the
+    /// transition from the latest posterior.
+    fn append<Fcv, Fct>(
+        &mut self,
+        imm: &AircraftImm<Fcv, Fct, C, R>,
+        step: usize,
+        dt: f64,
+        time: f64,
+        estimate: AircraftEstimate<C, R>,
+    ) -> Result<(), ImmSmoothError>
+    where
+        Fcv: SmoothingFilter<4>,
+        Fct: SmoothingFilter<5>,
+    {
+        let tr = transition(imm, self.latest(), dt);
+        let tr = self.record.forward(step, tr)?;
         self.record.push(AircraftStep {
             time,
             transition: Some(tr),
@@ -306,27 +317,9 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
         Fct: SmoothingFilter<5>,
     {
         let (step, dt) = self.record.next_interval(time)?;
-        let upd = match imm.step(self.latest(), dt, radar, z) {
-            Ok(u) => u,
-            Err(source) => {
-                return Err(self
-                    .record
-                    .fail(ImmSmoothError::ForwardFailed { step, source }));
-            }
-        };
-        let tr = match transition(imm, self.latest(), dt) {
-            Ok(tr) => tr,
-            Err(source) => {
-                return Err(self
-                    .record
-                    .fail(ImmSmoothError::ForwardFailed { step, source }));
-            }
-        };
-        self.record.push(AircraftStep {
-            time,
-            transition: Some(tr),
-            filtered: upd.estimate,
-        });
+        let upd = imm.step(self.latest(), dt, radar, z);
+        let upd = self.record.forward(step, upd)?;
+        self.append(imm, step, dt, time, upd.estimate)?;
         Ok(upd)
     }
 
