@@ -1,7 +1,7 @@
 //! The interacting multiple model (IMM) estimator, seed 000 eqs (1)–(7).
 
 use argus_core_math::{Gaussian, Vector};
-use argus_filters::{GaussianFilter, check_dt};
+use argus_filters::{FilterError, GaussianFilter, Innovation, check_dt};
 use argus_sensors::MeasurementModel;
 
 use crate::markov::{log_probabilities, log_sum_exp};
@@ -383,6 +383,18 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
         meas: &Me,
         z: &Vector<M>,
     ) -> Result<[f64; R], ImmError> {
+        self.each_mode(est, |f, g| f.update_in_place(g, meas, z))
+    }
+
+    /// `ln Λⱼ` of `stage` (a mode-matched update, or a prediction and update) applied to
+    /// each mode of `est` in place by its filter; the first failure names its mode. On an
+    /// error `est` is left partly updated: callers work on a copy.
+    #[inline(always)]
+    fn each_mode<const M: usize>(
+        &self,
+        est: &mut ImmEstimate<N, R>,
+        mut stage: impl FnMut(&F, &mut Gaussian<N>) -> Result<Innovation<M>, FilterError>,
+    ) -> Result<[f64; R], ImmError> {
         let mut ll = [f64::NEG_INFINITY; R];
         for (j, ((f, g), l)) in self
             .filters
@@ -391,7 +403,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
             .zip(ll.iter_mut())
             .enumerate()
         {
-            match f.update_in_place(g, meas, z) {
+            match stage(f, g) {
                 Ok(innov) => *l = innov.log_likelihood(),
                 Err(source) => return Err(ImmError::Filter { mode: j, source }),
             }
@@ -430,19 +442,7 @@ impl<F: GaussianFilter<N>, const N: usize, const R: usize> Imm<F, N, R> {
     ) -> Result<(f64, [f64; R]), ImmError> {
         check_dt(dt).map_err(|_| ImmError::InvalidInterval { dt })?;
         let cbar = self.mix_into(prior, &mut est.modes)?;
-        let mut ll = [f64::NEG_INFINITY; R];
-        for (j, ((f, g), l)) in self
-            .filters
-            .iter()
-            .zip(est.modes.iter_mut())
-            .zip(ll.iter_mut())
-            .enumerate()
-        {
-            match f.step_in_place(g, dt, meas, z) {
-                Ok(innov) => *l = innov.log_likelihood(),
-                Err(source) => return Err(ImmError::Filter { mode: j, source }),
-            }
-        }
+        let ll = self.each_mode(est, |f, g| f.step_in_place(g, dt, meas, z))?;
         Self::weigh_modes(est, &cbar, ll)
     }
 
