@@ -11,10 +11,9 @@ use std::path::{Path, PathBuf};
 use argus_core_math::Vector;
 use argus_sensors::Measurement;
 use argus_sim::{
-    KinematicState, Schedule, Segment, SensorId, SensorKind, SensorSpec, Trajectory, Truth,
-    generate_plots, run_rng,
+    FlightEnvelope, Schedule, SensorId, SensorKind, SensorSpec, Trajectory, Truth, generate_plots,
+    random_flight, run_rng,
 };
-use rand::RngExt;
 
 mod common;
 use common::{argus, assert_error, col, simulate_gimpo};
@@ -186,63 +185,16 @@ fn the_example_tracks_a_gimpo_flight_with_modes_and_turn_rate() {
     assert_eq!(bare_text, text);
 }
 
-/// One issue-18 flight (seeds `run_rng(18_202, run)`): straight legs of 40–150 s at
-/// 120–250 m/s, then a ±1–3 °/s turn of 30–120 s (65 %) or a ±0.5–1.5 m/s² speed change
-/// of 20–60 s, for 900 s, 20–150 km from the radar.
+/// One issue-18 flight (seeds `run_rng(18_202, run)`): the default envelope
+/// ([`FlightEnvelope`]: legs of 40–150 s at 120–250 m/s, then a ±1–3 °/s turn of 30–120 s
+/// (65 %) or a ±0.5–1.5 m/s² speed change of 20–60 s, for 900 s, 20–150 km from the radar)
+/// without its slowing down of fast flights.
 fn flight(run: u64) -> Trajectory {
-    let mut rng = run_rng(18_202, run);
-    loop {
-        let r0 = rng.random_range(40e3..120e3);
-        let az0 = rng.random_range(0.0..std::f64::consts::TAU);
-        let mut speed: f64 = rng.random_range(120.0..250.0);
-        let mut heading: f64 = rng.random_range(0.0..std::f64::consts::TAU);
-        let start = KinematicState::planar(
-            r0 * az0.cos(),
-            r0 * az0.sin(),
-            speed * heading.cos(),
-            speed * heading.sin(),
-        );
-        let (mut segments, mut t) = (Vec::new(), 0.0);
-        while t < 900.0 {
-            let leg = rng.random_range(40.0..150.0);
-            segments.push(Segment::ConstantVelocity { duration: leg });
-            t += leg;
-            if rng.random_range(0.0..1.0) < 0.65 {
-                let duration = rng.random_range(30.0..120.0);
-                let sign = if rng.random_range(0.0..1.0) < 0.5 {
-                    -1.0
-                } else {
-                    1.0
-                };
-                let rate = sign * rng.random_range(1.0_f64..3.0).to_radians();
-                segments.push(Segment::Turn { duration, rate });
-                heading += rate * duration;
-                t += duration;
-            } else {
-                let duration = rng.random_range(20.0..60.0);
-                let mut a = rng.random_range(0.5..1.5);
-                if speed + a * duration > 250.0 {
-                    a = -a;
-                }
-                if speed + a * duration < 120.0 {
-                    a = a.abs();
-                }
-                let accel =
-                    argus_core_math::Vector::<3>::new(a * heading.cos(), a * heading.sin(), 0.0);
-                segments.push(Segment::Accelerate { duration, accel });
-                speed += a * duration;
-                t += duration;
-            }
-        }
-        let traj = Trajectory::new(0.0, start, segments).unwrap();
-        let inside = (0..=180).all(|k| {
-            let s = traj.state_at(f64::from(k) * 5.0).unwrap();
-            (20e3..150e3).contains(&s.position.x.hypot(s.position.y))
-        });
-        if inside {
-            return traj;
-        }
-    }
+    let envelope = FlightEnvelope {
+        slow_down_above: None,
+        ..FlightEnvelope::default()
+    };
+    random_flight(&mut run_rng(18_202, run), &envelope).unwrap()
 }
 
 /// The flight's plots from seed 000's radar (rotating beam, 5 s, σr 70 m, σθ 0.08°,

@@ -51,6 +51,7 @@ mod metrics;
 mod montecarlo;
 mod ospa;
 mod plots;
+mod random_flight;
 mod sensor;
 mod track_metrics;
 mod truth;
@@ -64,6 +65,7 @@ pub use ospa::{Gospa, GospaValue, Ospa, OspaValue};
 pub use plots::{
     LabelledPlot, Origin, Rotation, beam_crossings, beam_crossings_along, generate_plots,
 };
+pub use random_flight::{FlightEnvelope, random_flight};
 pub use sensor::{Bias, Clutter, ClutterRegion, Detection, Schedule, SensorKind, SensorSpec};
 pub use track_metrics::{TrackScan, TrackStatistics};
 pub use truth::{KinematicState, Segment, TargetId, Trajectory, Truth};
