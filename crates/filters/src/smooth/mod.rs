@@ -92,32 +92,37 @@ use crate::{FilterError, GaussianFilter};
 
 /// The prediction of one step with what the backward pass needs: the predicted moments
 /// `x̂ₖ₊₁⁻, Pₖ₊₁⁻` and the cross covariance `Cₖ₊₁ = Cov(xₖ, xₖ₊₁ | Z₁:ₖ)`.
+///
+/// The state predicted from has `N` entries and the predicted one `NP` (`N` unless given):
+/// a multiple-model smoother's pair of models of different state sizes (the aircraft
+/// IMM's 4-state CV and 5-state CT) predicts one mode's estimate into another's state,
+/// and [`rts_step_across`] smooths back across them.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Transition<const N: usize> {
-    predicted: Gaussian<N>,
-    cross: Matrix<N, N>,
+pub struct Transition<const N: usize, const NP: usize = N> {
+    predicted: Gaussian<NP>,
+    cross: Matrix<N, NP>,
 }
 
-impl<const N: usize> Transition<N> {
+impl<const N: usize, const NP: usize> Transition<N, NP> {
     /// A transition from a prediction and its cross covariance with the state it was
     /// predicted from (for a forward pass run outside this crate's filters).
     ///
     /// # Errors
     /// [`MathError::NonFinite`] when the cross covariance is not finite.
-    pub fn new(predicted: Gaussian<N>, cross: Matrix<N, N>) -> Result<Self, MathError> {
+    pub fn new(predicted: Gaussian<NP>, cross: Matrix<N, NP>) -> Result<Self, MathError> {
         check_finite_matrix(&cross, "cross covariance")?;
         Ok(Self { predicted, cross })
     }
 
     /// The predicted estimate `x̂ₖ₊₁⁻, Pₖ₊₁⁻`.
     #[must_use]
-    pub fn predicted(&self) -> &Gaussian<N> {
+    pub fn predicted(&self) -> &Gaussian<NP> {
         &self.predicted
     }
 
-    /// The cross covariance `Cₖ₊₁ = Cov(xₖ, xₖ₊₁ | Z₁:ₖ)`.
+    /// The cross covariance `Cₖ₊₁ = Cov(xₖ, xₖ₊₁ | Z₁:ₖ)` (`N × NP`).
     #[must_use]
-    pub fn cross(&self) -> &Matrix<N, N> {
+    pub fn cross(&self) -> &Matrix<N, NP> {
         &self.cross
     }
 }

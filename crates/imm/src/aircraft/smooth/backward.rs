@@ -139,9 +139,9 @@ fn step_back<const C: usize, const R: usize>(
         let col = if j < C {
             let preds: [Gaussian<4>; R] = core::array::from_fn(|i| {
                 if i < C {
-                    tr.cv_cv[i][j].predicted
+                    *tr.cv_cv[i][j].predicted()
                 } else {
-                    tr.ct_cv[j].predicted
+                    *tr.ct_cv[j].predicted()
                 }
             });
             let (col, t) = column(weights, col, log_cbar[j], &preds, &smoothed_next.cv[j], k)?;
@@ -150,9 +150,9 @@ fn step_back<const C: usize, const R: usize>(
         } else {
             let preds: [Gaussian<5>; R] = core::array::from_fn(|i| {
                 if i < C {
-                    tr.cv_ct[i].predicted
+                    *tr.cv_ct[i].predicted()
                 } else {
-                    tr.ct_ct.predicted
+                    *tr.ct_ct.predicted()
                 }
             });
             let (col, t) = column(weights, col, log_cbar[j], &preds, &smoothed_next.ct, k)?;

@@ -1,39 +1,13 @@
 //! One mode pair's transition across unequal state sizes, and its RTS step.
 
-use argus_core_math::{Gaussian, MathError, Matrix, SpdFactor, check_finite_matrix, kernels};
-use argus_filters::rts_step_across;
+use argus_core_math::{Gaussian, MathError, Matrix, SpdFactor, kernels};
+use argus_filters::{Transition, rts_step_across};
 
 /// Mode `i`'s filtered estimate (size `NI`) brought into mode `j`'s state (size `NJ`) by
 /// the forward pass's mixing map and predicted through model `j`: the prediction
-/// `x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ` and the cross covariance `Cⁱʲ = Cov(xⁱₖ, xₖ₊₁ | Z₁:ₖ)` (`NI × NJ`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PairTransition<const NI: usize, const NJ: usize> {
-    pub(super) predicted: Gaussian<NJ>,
-    pub(super) cross: Matrix<NI, NJ>,
-}
-
-impl<const NI: usize, const NJ: usize> PairTransition<NI, NJ> {
-    /// A pair transition from its prediction and cross covariance.
-    ///
-    /// # Errors
-    /// [`MathError::NonFinite`] when the cross covariance is not finite.
-    pub fn new(predicted: Gaussian<NJ>, cross: Matrix<NI, NJ>) -> Result<Self, MathError> {
-        check_finite_matrix(&cross, "pair cross covariance")?;
-        Ok(Self { predicted, cross })
-    }
-
-    /// The prediction `x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ` (in mode `j`'s state).
-    #[must_use]
-    pub fn predicted(&self) -> &Gaussian<NJ> {
-        &self.predicted
-    }
-
-    /// `Cⁱʲ = Cov(xⁱₖ, xₖ₊₁)`, rows in mode `i`'s state, columns in mode `j`'s.
-    #[must_use]
-    pub fn cross(&self) -> &Matrix<NI, NJ> {
-        &self.cross
-    }
-}
+/// `x̂ⁱʲₖ₊₁|ₖ, Pⁱʲₖ₊₁|ₖ` and the cross covariance `Cⁱʲ = Cov(xⁱₖ, xₖ₊₁ | Z₁:ₖ)` (`NI × NJ`),
+/// a [`Transition`] across state sizes.
+pub type PairTransition<const NI: usize, const NJ: usize> = Transition<NI, NJ>;
 
 /// The pair's RTS step (module docs, eqs (4)–(5)): `G = Cⁱʲ (Pⁱʲₖ₊₁|ₖ)⁻¹` (`NI × NJ`),
 /// `x̂ⁱʲ = x̂ⁱₖ + G (x̃ − x̂ⁱʲₖ₊₁|ₖ)`, `Pⁱʲ = Pⁱₖ + G (P̃ − Pⁱʲₖ₊₁|ₖ) Gᵀ`, with the target

@@ -131,7 +131,7 @@ where
     // CV i → CT: [x̂ᵢ; ω̂ᵃ], diag(Pᵢ, σᵃ²); xᵢ is the augmented state's first four
     // components, so Cov(xᵢ, x⁻) is the first four rows of the 5 × 5 cross covariance.
     let (omega, var) = imm.augmentation().turn_rate(&prev.ct);
-    let mut cv_ct = [PairTransition::new(ct_ct.predicted, Matrix::zeros())?; C];
+    let mut cv_ct = [PairTransition::new(*ct_ct.predicted(), Matrix::zeros())?; C];
     for (g, out) in prev.cv.iter().zip(cv_ct.iter_mut()) {
         let aug = augmented(g, omega, var)?;
         let tr = ctf.predict_with_cross(&aug, dt).map_err(filter(C))?;
