@@ -69,7 +69,7 @@ const ATTEMPTS: usize = 10_000;
 ///
 /// # Errors
 /// [`SimError::InvalidParameter`] when the envelope's duration or check period is not
-/// positive and finite, or no flight of [`ATTEMPTS`] draws stays inside the coverage.
+/// positive and finite, or no flight of 10 000 draws stays inside the coverage.
 pub fn random_flight<G: Rng>(
     rng: &mut G,
     envelope: &FlightEnvelope,

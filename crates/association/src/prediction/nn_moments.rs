@@ -62,7 +62,7 @@ fn sphere_nodes<const M: usize, F: FnMut(&Vector<M>, f64)>(
 
 /// Moments of the nearest-neighbour plot when the filter gates with its own `S` but
 /// the target's innovation has covariance `S̄` (see
-/// [`PredictedFilter::NearestNeighbourKalmanGain`]). All in the filter's whitened
+/// [`PredictedFilter::NearestNeighbourKalmanGain`](crate::PredictedFilter::NearestNeighbourKalmanGain)). All in the filter's whitened
 /// coordinates `u = L⁻¹ν`, `S = L Lᵀ`, where the target's innovation is `N(0, Σ)`,
 /// `Σ = L⁻¹ S̄ L⁻ᵀ`, and the clutter is uniform with `β r^n` expected plots within
 /// radius `r`.
@@ -90,7 +90,7 @@ pub struct NnMoments<const M: usize> {
 /// (the nearest clutter plot is at radius `r` with density `βn r^{n−1}e^{−βr^n}` and
 /// in a uniform direction, independent of the target's plot). Radius: composite
 /// Gauss–Legendre; directions: the quadrature of `sphere_nodes`. At `Σ = I` these are the HYCA
-/// factors `c_T I`, `c_F` of [`hyca_factors`] (tested).
+/// factors `c_T I`, `c_F` of [`hyca_factors`](crate::hyca_factors) (tested).
 ///
 /// # Errors
 /// [`AssociationError::InvalidParameter`] for `β < 0`, `P_D ∉ (0, 1]`, a non-finite
