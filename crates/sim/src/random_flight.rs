@@ -69,38 +69,17 @@ const ATTEMPTS: usize = 10_000;
 ///
 /// # Errors
 /// [`SimError::InvalidParameter`] when the envelope's duration or check period is not
-/// positive and finite, or no flight of 10 000 draws stays inside the coverage.
+/// positive and finite, one of its ranges is empty or not finite, a duration range
+/// reaches down to zero, or no flight of 10 000 draws stays inside the coverage.
 pub fn random_flight<G: Rng>(
     rng: &mut G,
     envelope: &FlightEnvelope,
 ) -> Result<Trajectory, SimError> {
-    for (what, value) in [
-        ("flight duration", envelope.duration),
-        ("coverage check period", envelope.check_period),
-    ] {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(SimError::InvalidParameter {
-                what,
-                value,
-                reason: "must be positive and finite",
-            });
-        }
-    }
+    check(envelope)?;
     let checks = (envelope.duration / envelope.check_period) as usize;
     for _ in 0..ATTEMPTS {
         let traj = draw(rng, envelope)?;
-        let mut inside = true;
-        for k in 0..=checks {
-            let s = traj.state_at(k as f64 * envelope.check_period)?;
-            if !envelope
-                .coverage
-                .contains(&s.position.x.hypot(s.position.y))
-            {
-                inside = false;
-                break;
-            }
-        }
-        if inside {
+        if stays_inside(&traj, envelope, checks)? {
             return Ok(traj);
         }
     }
@@ -109,6 +88,62 @@ pub fn random_flight<G: Rng>(
         value: envelope.coverage.end,
         reason: "no drawn flight stayed inside it",
     })
+}
+
+/// The envelope's domain: what [`draw`] needs to draw at all (a uniform draw from an empty
+/// range would panic) and to end (every segment lasts a positive time).
+fn check(e: &FlightEnvelope) -> Result<(), SimError> {
+    let invalid = |what, value, reason| {
+        Err(SimError::InvalidParameter {
+            what,
+            value,
+            reason,
+        })
+    };
+    for (what, value) in [
+        ("flight duration", e.duration),
+        ("coverage check period", e.check_period),
+    ] {
+        if !(value.is_finite() && value > 0.0) {
+            return invalid(what, value, "must be positive and finite");
+        }
+    }
+    for (what, r) in [
+        ("start range", &e.start_range),
+        ("coverage", &e.coverage),
+        ("speed", &e.speed),
+        ("leg duration", &e.leg),
+        ("turn duration", &e.turn_duration),
+        ("turn rate", &e.turn_rate_deg),
+        ("acceleration duration", &e.accel_duration),
+        ("acceleration", &e.accel),
+    ] {
+        if !(r.start.is_finite() && r.end.is_finite() && r.start < r.end) {
+            return invalid(what, r.start, "must be a finite range with start < end");
+        }
+    }
+    for (what, r) in [
+        ("leg duration", &e.leg),
+        ("turn duration", &e.turn_duration),
+        ("acceleration duration", &e.accel_duration),
+    ] {
+        if r.start <= 0.0 {
+            return invalid(what, r.start, "must start above zero");
+        }
+    }
+    Ok(())
+}
+
+/// Whether `traj` keeps inside the coverage at every check time `k · check_period`,
+/// `k = 0 ..= checks`.
+fn stays_inside(traj: &Trajectory, e: &FlightEnvelope, checks: usize) -> Result<bool, SimError> {
+    for k in 0..=checks {
+        let s = traj.state_at(k as f64 * e.check_period)?;
+        if !e.coverage.contains(&s.position.x.hypot(s.position.y)) {
+            return Ok(false);
+        }
+    }
+    Ok(true)
 }
 
 /// One flight of `envelope`, before the coverage check.
@@ -204,5 +239,28 @@ mod tests {
             ..FlightEnvelope::default()
         };
         assert!(random_flight(&mut run_rng(1, 0), &bad).is_err());
+        // An empty range (a uniform draw from it would panic) and a zero-length leg (the
+        // flight would never end) are errors naming them.
+        for (envelope, name) in [
+            (
+                FlightEnvelope {
+                    speed: 250.0..120.0,
+                    ..FlightEnvelope::default()
+                },
+                "speed",
+            ),
+            (
+                FlightEnvelope {
+                    leg: 0.0..10.0,
+                    ..FlightEnvelope::default()
+                },
+                "leg duration",
+            ),
+        ] {
+            assert!(matches!(
+                random_flight(&mut run_rng(1, 0), &envelope),
+                Err(SimError::InvalidParameter { what, .. }) if what == name
+            ));
+        }
     }
 }
