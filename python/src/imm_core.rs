@@ -51,10 +51,11 @@ impl ImmOut {
     }
 }
 
-/// How a plain IMM's run reads its plots: Cartesian with a fixed `R`, or polar through the
-/// unbiased conversion (constants formed once) and the radar's position.
+/// How a plain IMM's run reads its plots: Cartesian through one sensor (its fixed `R`
+/// checked once per run), or polar through the unbiased conversion (constants formed once)
+/// and the radar's position, with a sensor per plot (each plot's own covariance).
 enum Reader {
-    Cartesian(Matrix<2, 2>),
+    Cartesian(CartesianPosition<4, 2>),
     Polar(UnbiasedPolarConversion, Vector<2>),
 }
 
@@ -137,7 +138,9 @@ impl<const R: usize> DynImm for PlainImm<R> {
         // per plot: the same arithmetic as `argus_scenarios::estimator::unbiased`
         // (`convert_polar`), so the same bits.
         let reader = match self.plots {
-            Plots::Cartesian(r) => Reader::Cartesian(r),
+            Plots::Cartesian(r) => Reader::Cartesian(
+                CartesianPosition::<4, 2>::cv(r).map_err(|e| fail(0, "SensorError", &e))?,
+            ),
             Plots::Polar {
                 sigma_range,
                 sigma_azimuth,
@@ -149,16 +152,19 @@ impl<const R: usize> DynImm for PlainImm<R> {
             ),
         };
         for (k, dt) in dts.iter().enumerate() {
-            let (z, r) = match &reader {
-                Reader::Cartesian(r) => (Vector::<2>::new(plots[2 * k], plots[2 * k + 1]), *r),
+            let (z, meas) = match &reader {
+                Reader::Cartesian(meas) => {
+                    (Vector::<2>::new(plots[2 * k], plots[2 * k + 1]), *meas)
+                }
                 Reader::Polar(conv, origin) => {
                     let c = conv
                         .convert(plots[2 * k], plots[2 * k + 1])
                         .map_err(|e| fail(k, "SensorError", &e))?;
-                    (c.position + origin, c.covariance)
+                    let meas = CartesianPosition::<4, 2>::cv(c.covariance)
+                        .map_err(|e| fail(k, "SensorError", &e))?;
+                    (c.position + origin, meas)
                 }
             };
-            let meas = CartesianPosition::<4, 2>::cv(r).map_err(|e| fail(k, "SensorError", &e))?;
             if *dt == 0.0 {
                 let upd = self.imm.update(&est.into_prediction(), &meas, &z);
                 est = upd.map_err(|e| fail(k, "ImmError", &e))?.estimate;
