@@ -80,6 +80,7 @@ pub use polar::{
     NoiseVariances, PlotConversion, PositionMeasurement, UnbiasedConversion, unbiased_conversion,
 };
 pub use smooth::{
-    ImmSmoothError, ImmSmoothed, ImmStep, ImmTrack, ImmTransition, PairWeights, imm_smooth,
+    ForwardRecord, ImmSmoothError, ImmSmoothed, ImmStep, ImmTrack, ImmTransition, ModeTrack,
+    PairWeights, imm_smooth,
 };
 pub use variational::{VariationalEstimate, VariationalNoiseImm};

@@ -72,7 +72,8 @@ use std::collections::BTreeMap;
 use argus_core_math::Gaussian;
 use argus_filters::Kf;
 use argus_imm::{
-    AircraftEkf, AircraftEstimate, Imm, ImmEstimate, MarkovMatrix, MultiImmEstimate, NoiseVariances,
+    AircraftEkf, AircraftEstimate, ForwardRecord, Imm, ImmEstimate, MarkovMatrix, MultiImmEstimate,
+    NoiseVariances,
 };
 use argus_motion_models::Cv2D;
 use argus_tracker::{
@@ -80,7 +81,7 @@ use argus_tracker::{
     TrackStatus, TrackerConfig,
 };
 
-use super::mode_record::{ModeRecorder, ModeTrack};
+use super::mode_record::ModeRecorder;
 use super::multi::{reason_name, status_name};
 use super::rows::{Column, Point, TrackRows};
 use super::smooth::{self, Failure, Smoothing, rts_rows};
@@ -319,7 +320,7 @@ fn aircraft_rows(
 /// # Errors
 /// [`Failure`] at the step whose row has no state, whose time goes backwards, or whose
 /// prediction or backward step fails.
-fn mode_rows<T: ModeTrack<M, Estimate = E>, M, E>(
+fn mode_rows<T: ForwardRecord<M, 4, Estimate = E>, M, E>(
     mut rec: ModeRecorder<T, E>,
     imm: &M,
     rows: &[Row],
@@ -340,10 +341,7 @@ fn mode_rows<T: ModeTrack<M, Estimate = E>, M, E>(
         .zip(&times)
         .map(|(&k, &t)| {
             s.get(k)
-                .map(|s| {
-                    let (combined, modes) = T::row(s);
-                    (combined, Some(modes))
-                })
+                .map(|s| (*T::combined(s), Some(T::mode_probabilities(s).to_vec())))
                 .ok_or_else(|| Failure::new(k, t, "no smoothed step".to_owned()))
         })
         .collect()

@@ -3,7 +3,9 @@
 //! done, and each row given its step's smoothed estimate (rows of one time are one step,
 //! [`smooth::steps`]).
 
-use super::mode_record::{ModeRecorder, ModeTrack};
+use argus_imm::ForwardRecord;
+
+use super::mode_record::ModeRecorder;
 use super::smooth::{self, Failure, Smoothing};
 use crate::error::CliError;
 
@@ -25,7 +27,7 @@ impl<S> SmoothedRun<S> {
 ///
 /// # Errors
 /// [`CliError::Smooth`] for a step that cannot be smoothed.
-pub(super) fn smooth_run<T: ModeTrack<M, Estimate = E>, M, E>(
+pub(super) fn smooth_run<T: ForwardRecord<M, 4, Estimate = E>, M, E>(
     record: Option<ModeRecorder<T, E>>,
     imm: &M,
     how: Option<Smoothing>,

@@ -4,48 +4,20 @@
 //! smoother ([`argus_imm::imm_smooth`]), fixed interval or, by windows of the same
 //! backward pass, fixed lag.
 
-use argus_core_math::Gaussian;
-use argus_filters::SmoothingFilter;
-use argus_imm::{Imm, ImmEstimate, ImmSmoothError, ImmSmoothed, ImmTrack, PairWeights};
+use argus_imm::{ImmEstimate, ImmTrack};
 
-use super::mode_record::{ModeRecorder, ModeTrack};
+use super::mode_record::ModeRecorder;
 
 /// An IMM forward pass with `R` modes being recorded for smoothing.
 pub(super) type ImmRecorder<const R: usize> = ModeRecorder<ImmTrack<4, R>, ImmEstimate<4, R>>;
-
-impl<F: SmoothingFilter<4>, const R: usize> ModeTrack<Imm<F, 4, R>> for ImmTrack<4, R> {
-    type Estimate = ImmEstimate<4, R>;
-    type Smoothed = ImmSmoothed<4, R>;
-
-    fn start(imm: &Imm<F, 4, R>, time: f64, est: Self::Estimate) -> Result<Self, ImmSmoothError> {
-        Self::new(*imm.markov(), time, est)
-    }
-
-    fn push(
-        &mut self,
-        imm: &Imm<F, 4, R>,
-        time: f64,
-        est: Self::Estimate,
-    ) -> Result<(), ImmSmoothError> {
-        ImmTrack::push(self, imm, time, est)
-    }
-
-    fn smooth_steps(&self, j: usize, k: usize) -> Result<Vec<Self::Smoothed>, ImmSmoothError> {
-        argus_imm::imm_smooth(self.markov(), PairWeights::default(), &self.steps()[j..=k])
-    }
-
-    fn row(s: &Self::Smoothed) -> (Gaussian<4>, Vec<f64>) {
-        (s.combined, s.mode_probabilities.to_vec())
-    }
-}
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::track::smooth::Smoothing;
-    use argus_core_math::{Matrix, Vector};
+    use argus_core_math::{Gaussian, Matrix, Vector};
     use argus_filters::Kf;
-    use argus_imm::MarkovMatrix;
+    use argus_imm::{Imm, MarkovMatrix};
     use argus_motion_models::Cv2D;
     use argus_sensors::CartesianPosition;
 

@@ -128,11 +128,13 @@ mod error;
 #[cfg(feature = "gibbs")]
 pub mod gibbs;
 mod likelihood;
+mod mode_track;
 mod record;
 mod track;
 
 pub use backward::{ImmSmoothed, PairWeights, imm_smooth};
 pub use error::ImmSmoothError;
 pub(crate) use likelihood::BackwardLikelihood;
+pub use mode_track::{ForwardRecord, ModeTrack};
 pub(crate) use record::{Record, RecordedStep, backward_pass};
 pub use track::{ImmStep, ImmTrack, ImmTransition};

@@ -169,4 +169,24 @@ impl<S: RecordedStep> Record<S> {
             None => Ok(&self.steps),
         }
     }
+
+    /// Steps `first ..= last` to smooth, or the recorded failure.
+    ///
+    /// # Errors
+    /// The recorded failure; [`SmoothError::LengthMismatch`] when the window is empty or
+    /// reaches past the latest step.
+    pub(crate) fn window(&self, first: usize, last: usize) -> Result<&[S], ImmSmoothError> {
+        let steps = self.to_smooth()?;
+        steps
+            .get(first..=last)
+            .filter(|w| !w.is_empty())
+            .ok_or_else(|| {
+                SmoothError::LengthMismatch {
+                    what: "smoothing window's last step (against the recorded steps)",
+                    expected: steps.len(),
+                    found: last.saturating_add(1),
+                }
+                .into()
+            })
+    }
 }

@@ -245,4 +245,22 @@ impl<const N: usize, const R: usize> ImmTrack<N, R> {
     ) -> Result<Vec<ImmSmoothed<N, R>>, ImmSmoothError> {
         imm_smooth(&self.markov, weights, self.record.to_smooth()?)
     }
+
+    /// [`ImmTrack::smooth`] over steps `first ..= last` alone (a fixed-lag smoother's
+    /// window: the later plots ignored, `last`'s estimate the filter's).
+    ///
+    /// # Errors
+    /// As [`ImmTrack::smooth`]; [`argus_filters::SmoothError::LengthMismatch`] for a
+    /// window that is empty or reaches past the latest step.
+    pub fn smooth_window(
+        &self,
+        first: usize,
+        last: usize,
+    ) -> Result<Vec<ImmSmoothed<N, R>>, ImmSmoothError> {
+        imm_smooth(
+            &self.markov,
+            PairWeights::default(),
+            self.record.window(first, last)?,
+        )
+    }
 }

@@ -234,7 +234,7 @@ pub(crate) fn smoothed_imm_track(
     history: &TrackHistory,
     states: &[Option<ImmEstimate<4, 2>>],
 ) -> Result<TrackHistory, ScenarioError> {
-    modes::smoothed_mode_track::<ImmTrack<4, 2>, _>(imm, history, states, "IMM", |s| *s)
+    modes::smoothed_mode_track::<ImmTrack<4, 2>, _, _>(imm, history, states, "IMM", |s| *s)
 }
 
 /// An aircraft-IMM track's rows smoothed by `argus_imm`'s aircraft-IMM smoother over its
@@ -249,7 +249,7 @@ pub(crate) fn smoothed_aircraft_track(
     history: &TrackHistory,
     states: &[Option<Box<AircraftEstimate<2, 3>>>],
 ) -> Result<TrackHistory, ScenarioError> {
-    modes::smoothed_mode_track::<AircraftTrack<2, 3>, _>(
+    modes::smoothed_mode_track::<AircraftTrack<2, 3>, _, _>(
         imm,
         history,
         states,

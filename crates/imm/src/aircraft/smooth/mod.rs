@@ -65,6 +65,7 @@
 //! Granström, Willett & Bar-Shalom (2015) and the cross covariances of Särkkä (2008).
 
 mod backward;
+mod mode_track;
 mod pair;
 mod track;
 

@@ -231,6 +231,11 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
         Ok(track)
     }
 
+    /// Room for `additional` more steps (no reallocation while recording them).
+    pub fn reserve(&mut self, additional: usize) {
+        self.record.reserve(additional);
+    }
+
     /// The transition matrix.
     #[must_use]
     pub fn markov(&self) -> &MarkovMatrix<R> {
@@ -340,5 +345,23 @@ impl<const C: usize, const R: usize> AircraftTrack<C, R> {
         weights: PairWeights,
     ) -> Result<Vec<AircraftSmoothed<C, R>>, ImmSmoothError> {
         aircraft_smooth(&self.markov, weights, self.record.to_smooth()?)
+    }
+
+    /// [`AircraftTrack::smooth`] over steps `first ..= last` alone (a fixed-lag smoother's
+    /// window: the later plots ignored, `last`'s estimate the filter's).
+    ///
+    /// # Errors
+    /// As [`AircraftTrack::smooth`]; [`SmoothError::LengthMismatch`] for a window that is
+    /// empty or reaches past the latest step.
+    pub fn smooth_window(
+        &self,
+        first: usize,
+        last: usize,
+    ) -> Result<Vec<AircraftSmoothed<C, R>>, ImmSmoothError> {
+        aircraft_smooth(
+            &self.markov,
+            PairWeights::default(),
+            self.record.window(first, last)?,
+        )
     }
 }
