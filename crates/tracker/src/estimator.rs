@@ -5,8 +5,8 @@
 use argus_core_math::{Gaussian, Vector};
 use argus_filters::{Ekf, GaussianFilter, Kf, MeasurementPrediction};
 use argus_imm::{
-    AircraftTuning, Imm, ImmEstimate, ImmPrediction, MarkovMatrix, MultiImm, MultiImmEstimate,
-    NoiseGrid, NoiseVariances, log_sum_exp, moment_match,
+    AircraftTuning, ImmEstimate, ImmPrediction, MultiImm, MultiImmEstimate, NoiseGrid,
+    NoiseVariances, log_sum_exp, moment_match,
 };
 use argus_motion_models::Cv2D;
 use argus_sensors::Polar2D;
@@ -18,10 +18,7 @@ use crate::innovation::{gate_box, imm_gate_box, imm_innovation, innovation, pola
 use crate::pda::{imm_jpda_update, jpda_update};
 use crate::plot::{CartesianPlots, PolarModel, ScanPoint};
 use crate::state::{MULTI_IMM_HYPOTHESES, MultiState, TrackState};
-use crate::{EstimatorConfig, TrackerConfig, TrackerError};
-
-/// The two-mode CV IMM.
-type Imm2 = Imm<Kf<Cv2D>, 4, 2>;
+use crate::{EstimatorConfig, TrackerConfig, TrackerError, TwoModeImm, two_mode_imm};
 
 /// The filters of the configured estimator, built once.
 #[derive(Debug, Clone)]
@@ -36,7 +33,7 @@ pub(crate) enum Estimator {
         kf: Kf<Cv2D>,
     },
     /// The two-mode CV IMM.
-    Imm(Imm2),
+    Imm(TwoModeImm),
     /// Seed 000's multi-IMM noise estimator.
     MultiImm(MultiImm<Kf<Cv2D>, 4, 2, MULTI_IMM_HYPOTHESES>),
     /// The aircraft IMM, and its tuning (for the start).
@@ -64,7 +61,7 @@ pub(crate) enum TrackGate<'a> {
         polar: Option<(&'a MeasurementPrediction<4, 2>, &'a PolarModel)>,
     },
     /// Per-mode gating of an IMM track.
-    Imm(&'a Imm2, &'a ImmPrediction<4, 2>),
+    Imm(&'a TwoModeImm, &'a ImmPrediction<4, 2>),
     /// Per-mode polar gating of an aircraft-IMM track.
     Aircraft(AircraftGate<'a>),
 }
@@ -103,23 +100,6 @@ impl TrackGate<'_> {
 impl Estimator {
     pub(crate) fn new(config: &TrackerConfig) -> Result<Self, TrackerError> {
         let cv = || Cv2D::discrete(config.sigma_a);
-        let imm2 = |sigma_a_low, sigma_a_high, p_stay: f64| {
-            let markov = MarkovMatrix::new([[p_stay, 1.0 - p_stay], [1.0 - p_stay, p_stay]])
-                .map_err(|_| TrackerError::InvalidConfig {
-                    field: ConfigField::Estimator(EstimatorField::PStay),
-                    value: p_stay,
-                    reason: "does not make a Markov matrix",
-                })?;
-            let filters = [
-                Kf::new(Cv2D::discrete(sigma_a_low)?),
-                Kf::new(Cv2D::discrete(sigma_a_high)?),
-            ];
-            Imm::new(filters, markov).map_err(|_| TrackerError::InvalidConfig {
-                field: ConfigField::Estimator(EstimatorField::Kind),
-                value: p_stay,
-                reason: "the IMM rejected it",
-            })
-        };
         // The CV model of `sigma_a` was built first for every estimator before: its
         // error, if any, still comes first.
         cv()?;
@@ -133,7 +113,7 @@ impl Estimator {
                 sigma_a_low,
                 sigma_a_high,
                 p_stay,
-            } => Self::Imm(imm2(sigma_a_low, sigma_a_high, p_stay)?),
+            } => Self::Imm(two_mode_imm(sigma_a_low, sigma_a_high, p_stay)?),
             EstimatorConfig::MultiImm {
                 sigma_a_low,
                 sigma_a_high,
@@ -148,7 +128,7 @@ impl Estimator {
                 };
                 let grid = NoiseGrid::common(grid_spacing)
                     .map_err(|_| bad(EstimatorField::GridSpacing, grid_spacing))?;
-                let imm = imm2(sigma_a_low, sigma_a_high, p_stay)?;
+                let imm = two_mode_imm(sigma_a_low, sigma_a_high, p_stay)?;
                 Self::MultiImm(
                     MultiImm::new(imm, grid, clip)
                         .map_err(|_| bad(EstimatorField::Clip, clip.unwrap_or(f64::NAN)))?,
@@ -397,7 +377,7 @@ fn ekf_update(
 /// One IMM update (or coast through a miss): the moment-matched posterior with the
 /// plot's total log-likelihood, and the IMM estimate; `None` on failure.
 fn imm_step(
-    imm: &Imm2,
+    imm: &TwoModeImm,
     pred: ImmPrediction<4, 2>,
     hit: Option<&ScanPoint>,
 ) -> Option<(Gaussian<4>, Option<f64>, ImmEstimate<4, 2>)> {

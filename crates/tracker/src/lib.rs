@@ -202,6 +202,7 @@ mod rotation;
 mod state;
 mod track;
 mod tracker;
+mod two_mode;
 
 /// The aircraft IMM's tuning and mixing rule (from `argus-imm`), re-exported for
 /// [`EstimatorConfig::Aircraft`].
@@ -217,3 +218,4 @@ pub use rotation::{Rotation, RotationDirection};
 pub use state::{MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};
+pub use two_mode::{TwoModeImm, two_mode_imm};

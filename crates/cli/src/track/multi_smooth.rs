@@ -72,13 +72,12 @@ use std::collections::BTreeMap;
 use argus_core_math::Gaussian;
 use argus_filters::Kf;
 use argus_imm::{
-    AircraftEkf, AircraftEstimate, ForwardRecord, Imm, ImmEstimate, MarkovMatrix, MultiImmEstimate,
-    NoiseVariances,
+    AircraftEkf, AircraftEstimate, ForwardRecord, ImmEstimate, MultiImmEstimate, NoiseVariances,
 };
 use argus_motion_models::Cv2D;
 use argus_tracker::{
     DeletionReason, EstimatorConfig, MULTI_IMM_HYPOTHESES, ModeProbabilities, SensorId, Track,
-    TrackStatus, TrackerConfig,
+    TrackStatus, TrackerConfig, TwoModeImm, two_mode_imm,
 };
 
 use super::mode_record::ModeRecorder;
@@ -88,9 +87,6 @@ use super::smooth::{self, Failure, Smoothing, rts_rows};
 use super::smooth_aircraft::AircraftRecorder;
 use super::smooth_imm::ImmRecorder;
 use crate::error::CliError;
-
-/// The tracker's two-mode CV IMM.
-type Imm2 = Imm<Kf<Cv2D>, 4, 2>;
 
 /// One row as the tracker gave it.
 #[derive(Debug, Clone)]
@@ -121,7 +117,7 @@ enum Smoother {
     Rts(Kf<Cv2D>),
     /// The IMM smoother, with the tracks' IMM (for the multi-IMM: its IMMs' common
     /// dynamics, over the posteriors merged over the noise hypotheses).
-    Imm(Imm2),
+    Imm(TwoModeImm),
     /// The aircraft-IMM smoother, with the tracks' aircraft IMM.
     Aircraft(Box<AircraftEkf<2, 3>>),
 }
@@ -137,22 +133,12 @@ pub(super) struct Recorded {
     smoother: Smoother,
 }
 
-/// The tracker's IMM, built as `argus_tracker` builds it.
-fn tracker_imm(sigma_a_low: f64, sigma_a_high: f64, p_stay: f64) -> Result<Imm2, CliError> {
-    let markov = MarkovMatrix::new([[p_stay, 1.0 - p_stay], [1.0 - p_stay, p_stay]])?;
-    let filters = [
-        Kf::new(Cv2D::discrete(sigma_a_low)?),
-        Kf::new(Cv2D::discrete(sigma_a_high)?),
-    ];
-    Ok(Imm::new(filters, markov)?)
-}
-
 impl Recorded {
     /// An empty record for the tracker configured by `c`.
     ///
     /// # Errors
-    /// [`CliError::Motion`] / [`CliError::Imm`] for a bad `sigma_a` or `p_stay` (already
-    /// refused by the configuration).
+    /// [`CliError::Motion`] / [`CliError::Tracker`] for a bad `sigma_a` or `p_stay`
+    /// (already refused by the configuration).
     pub(super) fn new(c: &TrackerConfig) -> Result<Self, CliError> {
         let smoother = match c.estimator {
             EstimatorConfig::Kf | EstimatorConfig::Ekf => {
@@ -168,7 +154,7 @@ impl Recorded {
                 sigma_a_high,
                 p_stay,
                 ..
-            } => Smoother::Imm(tracker_imm(sigma_a_low, sigma_a_high, p_stay)?),
+            } => Smoother::Imm(two_mode_imm(sigma_a_low, sigma_a_high, p_stay)?),
             EstimatorConfig::Aircraft { tuning } => Smoother::Aircraft(Box::new(tuning.build()?)),
         };
         Ok(Self {
@@ -276,7 +262,7 @@ impl Recorded {
 /// [`Failure`] at the step whose row has no IMM state, whose time goes backwards, or
 /// whose prediction or backward step fails.
 fn imm_rows(
-    imm: &Imm2,
+    imm: &TwoModeImm,
     rows: &[Row],
     live: &[usize],
     how: Smoothing,

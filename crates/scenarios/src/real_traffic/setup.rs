@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use super::radar::{self, Radar};
 use super::smooth::{
     SmoothedTruth, nees_against, smoothed_aircraft_track, smoothed_imm_track, smoothed_track,
-    smoothed_truth, tracker_imm,
+    smoothed_truth,
 };
 use super::truth::{self, Path};
 use crate::error::{ParamProblem, ScenarioError};
@@ -291,7 +291,7 @@ impl Setup {
                     sigma_a_high,
                     p_stay,
                 } => {
-                    let imm = tracker_imm(sigma_a_low, sigma_a_high, p_stay)?;
+                    let imm = argus_tracker::two_mode_imm(sigma_a_low, sigma_a_high, p_stay)?;
                     Some(
                         histories
                             .iter()

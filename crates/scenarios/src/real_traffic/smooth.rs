@@ -34,12 +34,11 @@
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Kf, RtsStep, SmoothingFilter, rts_smooth};
-use argus_imm::{
-    AircraftEkf, AircraftEstimate, AircraftTrack, Imm, ImmEstimate, ImmTrack, MarkovMatrix,
-};
+use argus_imm::{AircraftEkf, AircraftEstimate, AircraftTrack, ImmEstimate, ImmTrack};
 use argus_motion_models::Cv2D;
 use argus_score::{TrackHistory, TrackRow, TruthPath};
 use argus_sensors::CartesianPosition;
+use argus_tracker::TwoModeImm;
 
 use crate::error::ScenarioError;
 
@@ -200,27 +199,6 @@ fn with_smoothed_states<'a>(
     TrackHistory::new(history.name(), rows).map_err(ScenarioError::from)
 }
 
-/// The tracker's two-mode CV IMM.
-pub(crate) type Imm2 = Imm<Kf<Cv2D>, 4, 2>;
-
-/// The IMM of [`argus_tracker::EstimatorConfig::ImmCv2`], built by the same constructors
-/// as the tracker's (`Cv2D::discrete`, the Markov matrix `[[p, 1 − p], [1 − p, p]]`).
-///
-/// # Errors
-/// [`ScenarioError`] for a bad value (already refused by the tracker's configuration).
-pub(crate) fn tracker_imm(
-    sigma_a_low: f64,
-    sigma_a_high: f64,
-    p_stay: f64,
-) -> Result<Imm2, ScenarioError> {
-    let markov = MarkovMatrix::new([[p_stay, 1.0 - p_stay], [1.0 - p_stay, p_stay]])?;
-    let filters = [
-        Kf::new(Cv2D::discrete(sigma_a_low)?),
-        Kf::new(Cv2D::discrete(sigma_a_high)?),
-    ];
-    Ok(Imm::new(filters, markov)?)
-}
-
 /// A two-mode IMM track's rows smoothed by `argus_imm`'s IMM smoother over its recorded
 /// mode-conditioned states `states` (module docs): a history with the same rows and flags
 /// and the smoothed combined states. Rows at the time of the row before (a deleted
@@ -230,7 +208,7 @@ pub(crate) fn tracker_imm(
 /// [`ScenarioError::Degenerate`] naming the track if a row has no IMM state or a step
 /// fails.
 pub(crate) fn smoothed_imm_track(
-    imm: &Imm2,
+    imm: &TwoModeImm,
     history: &TrackHistory,
     states: &[Option<ImmEstimate<4, 2>>],
 ) -> Result<TrackHistory, ScenarioError> {
@@ -414,7 +392,7 @@ mod tests {
         // Rows of a two-mode IMM track (updates, one coasted row, a repeated last row)
         // smoothed from the recorded mode states alone equal ImmTrack's smoother of the
         // same forward pass (ImmTrack::step) to round-off (1e-9 relative).
-        let imm = tracker_imm(0.5, 10.0, 0.95).unwrap();
+        let imm = argus_tracker::two_mode_imm(0.5, 10.0, 0.95).unwrap();
         let meas = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 900.0).unwrap();
         let g0 = Gaussian::new(
             Vector::<4>::new(0.0, 100.0, 0.0, 0.0),
