@@ -15,6 +15,7 @@ use pyo3::prelude::*;
 use crate::arrays::{matrix, out_matrix, out_vector, small_vector, vector};
 use crate::errors::{Kind, invalid, raise, rust_name};
 use crate::memo_run::run_reusing_gain;
+use crate::run_io::{RunFail, RunOut, RunSlices};
 
 /// An estimate `(x, P)` handed back to Python.
 pub(crate) type Estimate<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray2<f64>>);
@@ -38,32 +39,6 @@ fn estimate<const N: usize>(x: &Bound<'_, PyAny>, p: &Bound<'_, PyAny>) -> PyRes
     let mean = vector::<N>(x, "x")?;
     let cov = matrix::<N, N>(p, "P")?;
     Gaussian::new(mean, cov).map_err(|e| invalid("MathError", "argument 'P'", &e))
-}
-
-/// A batch run's output arrays (numpy's memory, written with the GIL released),
-/// row-major: `n × N` states, `n × N × N` covariances, `n` NIS.
-#[derive(Debug)]
-pub(crate) struct RunSlices<'a> {
-    pub(crate) x: &'a mut [f64],
-    pub(crate) p: &'a mut [f64],
-    pub(crate) nis: &'a mut [f64],
-}
-
-/// A smoother's outputs, row-major: `n × N` states, `n × N × N` covariances, `n` NIS.
-#[derive(Debug, Default)]
-pub(crate) struct RunOut {
-    pub(crate) x: Vec<f64>,
-    pub(crate) p: Vec<f64>,
-    pub(crate) nis: Vec<f64>,
-}
-
-/// A batch run's failure: at step `index`, or the starting estimate.
-#[derive(Debug)]
-pub(crate) enum RunFail {
-    /// The starting estimate is invalid.
-    Start(argus_core_math::MathError),
-    /// The step at plot `index` failed.
-    Step(usize, FilterError),
 }
 
 /// A filter and its sensor with the state size `n()` and measurement size `m()` fixed.

@@ -14,7 +14,8 @@ use pyo3::prelude::*;
 use crate::arrays::{array, empty, finite, out_array, read, values};
 use crate::errors::{Kind, input, invalid, raise, rust_name};
 use crate::filter_build::{FilterKind, SensorArgs, make, model_dimension, sensor_spec};
-use crate::filter_core::{DynFilter, Estimate, RunFail, RunSlices, SmoothFail, filter_error};
+use crate::filter_core::{DynFilter, Estimate, SmoothFail, filter_error};
+use crate::run_io::{RunFail, RunSlices};
 
 /// The base of the three filter classes. Stateful like FilterPy (the object owns `x` and
 /// `P`: `predict(dt)`, `update(z)`, the `x` / `P` / `nis` properties, `set_state`) and

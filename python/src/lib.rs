@@ -22,6 +22,7 @@ mod imm;
 mod imm_core;
 mod memo_run;
 mod metrics;
+mod run_io;
 mod scenarios;
 mod score;
 mod track;

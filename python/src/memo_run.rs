@@ -24,7 +24,7 @@ use argus_core_math::{Gaussian, Matrix, Vector, kernels};
 use argus_filters::{FilterError, GaussianFilter, MeasurementPrediction};
 use argus_sensors::MeasurementModel;
 
-use crate::filter_core::{RunFail, RunSlices};
+use crate::run_io::{RunFail, RunSlices};
 
 /// How many `(dt, P_prior)` keys are kept: a converged recursion reaches a fixed point or
 /// a short cycle of round-off; interleaved intervals need one key each.
