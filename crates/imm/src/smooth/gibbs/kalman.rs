@@ -5,7 +5,7 @@
 
 use argus_core_math::{Matrix, Vector, kernels};
 
-use super::problem::StepModel;
+use super::step_model::StepModel;
 
 /// A Gaussian's moments in the sweep's buffers (not validated: the sweep's own output).
 #[derive(Debug, Clone, Copy)]

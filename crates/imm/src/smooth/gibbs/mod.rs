@@ -86,6 +86,7 @@ mod error;
 mod estimate;
 mod kalman;
 mod problem;
+mod step_model;
 mod tree;
 
 pub use chain::GibbsChain;

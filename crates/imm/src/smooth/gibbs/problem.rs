@@ -9,19 +9,8 @@ use argus_sensors::LinearMeasurementModel;
 
 use super::error::GibbsError;
 use super::kalman::Moments;
+use super::step_model::StepModel;
 use crate::{Imm, PROBABILITY_SUM_TOL};
-
-/// One step's models: the transitions of every mode into it and its plot.
-#[derive(Debug, Clone)]
-pub(super) struct StepModel<const N: usize, const D: usize, const R: usize> {
-    pub(super) f: [Matrix<N, N>; R],
-    pub(super) q: [Matrix<N, N>; R],
-    pub(super) h: Matrix<D, N>,
-    pub(super) r: Matrix<D, D>,
-    pub(super) z: Vector<D>,
-    pub(super) info: Matrix<N, N>,
-    pub(super) info_z: Vector<N>,
-}
 
 /// The jump-Markov linear system an IMM of Kalman filters assumes, over one track:
 /// `m₀ ~ μ₀`, `mₖ | mₖ₋₁ ~ π`, `x₀ ~ start` (at `times[0]`), `xₖ = F_{mₖ}(Δₖ) xₖ₋₁ + w`,
