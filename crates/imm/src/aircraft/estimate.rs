@@ -1,9 +1,9 @@
 //! The state of the aircraft IMM: `C` CV estimates on `[x, vx, y, vy]`, one CT estimate
-//! on `[x, vx, y, vy, ω]`, and the `R = C + 1` mode probabilities.
+//! on `[x, vx, y, vy, ω]`, and the `R = C + 1` mode probabilities; and the same state as
+//! one cycle's prediction ([`AircraftPrediction`]).
 
 use argus_core_math::Gaussian;
 
-use super::estimator::AircraftPrediction;
 use super::mixing::kinematic_marginal;
 use crate::{ImmError, log_probabilities};
 
@@ -98,5 +98,26 @@ impl<const C: usize, const R: usize> AircraftEstimate<C, R> {
                 if j < C { self.cv[j] } else { ct4 }
             },
         ))
+    }
+}
+
+/// The mode-matched predictions of one cycle, before the plot is used.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AircraftPrediction<const C: usize, const R: usize> {
+    pub(super) predicted: AircraftEstimate<C, R>,
+}
+
+impl<const C: usize, const R: usize> AircraftPrediction<C, R> {
+    /// The predicted modes, with the predicted mode probabilities `μ̄ⱼ = Σᵢ πᵢⱼ μᵢ` in
+    /// place of `μ` (so that [`AircraftEstimate::combined`] is the combined prediction).
+    #[must_use]
+    pub fn modes(&self) -> &AircraftEstimate<C, R> {
+        &self.predicted
+    }
+
+    /// Coasts through a missing plot: the predictions become the estimate, `μ = μ̄`.
+    #[must_use]
+    pub fn into_estimate(self) -> AircraftEstimate<C, R> {
+        self.predicted
     }
 }

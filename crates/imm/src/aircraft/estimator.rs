@@ -4,7 +4,7 @@
 use argus_core_math::Vector;
 use argus_filters::{GaussianFilter, check_dt};
 
-use super::estimate::AircraftEstimate;
+use super::estimate::{AircraftEstimate, AircraftPrediction};
 use super::mixing::{Augmentation, augmented};
 use super::radar::AircraftRadar;
 use crate::{ImmError, MarkovMatrix, log_sum_exp};
@@ -23,27 +23,6 @@ pub struct AircraftImm<Fcv, Fct, const C: usize, const R: usize> {
     ct: Fct,
     markov: MarkovMatrix<R>,
     augmentation: Augmentation,
-}
-
-/// The mode-matched predictions of one cycle, before the plot is used.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct AircraftPrediction<const C: usize, const R: usize> {
-    pub(super) predicted: AircraftEstimate<C, R>,
-}
-
-impl<const C: usize, const R: usize> AircraftPrediction<C, R> {
-    /// The predicted modes, with the predicted mode probabilities `μ̄ⱼ = Σᵢ πᵢⱼ μᵢ` in
-    /// place of `μ` (so that [`AircraftEstimate::combined`] is the combined prediction).
-    #[must_use]
-    pub fn modes(&self) -> &AircraftEstimate<C, R> {
-        &self.predicted
-    }
-
-    /// Coasts through a missing plot: the predictions become the estimate, `μ = μ̄`.
-    #[must_use]
-    pub fn into_estimate(self) -> AircraftEstimate<C, R> {
-        self.predicted
-    }
 }
 
 /// The result of an update with one plot.

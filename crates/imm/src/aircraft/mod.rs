@@ -93,8 +93,8 @@ mod tuning;
 #[cfg(test)]
 mod tests;
 
-pub use estimate::AircraftEstimate;
-pub use estimator::{AircraftImm, AircraftPrediction, AircraftUpdate};
+pub use estimate::{AircraftEstimate, AircraftPrediction};
+pub use estimator::{AircraftImm, AircraftUpdate};
 pub use mixing::Augmentation;
 pub use radar::AircraftRadar;
 pub use smooth::{
