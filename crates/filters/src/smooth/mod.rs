@@ -78,13 +78,15 @@
 mod error;
 mod fixed_lag;
 mod rts;
+mod step;
 mod track;
 mod urts;
 
 pub use error::SmoothError;
 pub use fixed_lag::{FixedLagSmoother, Lag, Lagged};
 pub use rts::{rts_smooth, rts_smooth_into, rts_step, rts_step_across};
-pub use track::{RtsStep, RtsTrack};
+pub use step::RtsStep;
+pub use track::RtsTrack;
 
 use argus_core_math::{Gaussian, MathError, Matrix, check_finite_matrix};
 

@@ -3,9 +3,10 @@
 use argus_core_math::Gaussian;
 use argus_filters::{SmoothError, rts_step};
 
+use super::ImmSmoothError;
 use super::likelihood::BackwardLikelihood;
 use super::record::backward_pass;
-use super::{ImmSmoothError, ImmStep};
+use super::step::ImmStep;
 use crate::MarkovMatrix;
 use crate::markov::log_sum_exp;
 

@@ -130,6 +130,7 @@ pub mod gibbs;
 mod likelihood;
 mod mode_track;
 mod record;
+mod step;
 mod track;
 
 pub use backward::{ImmSmoothed, PairWeights, imm_smooth};
@@ -137,4 +138,5 @@ pub use error::ImmSmoothError;
 pub(crate) use likelihood::BackwardLikelihood;
 pub use mode_track::{ForwardRecord, ModeTrack};
 pub(crate) use record::{Record, RecordedStep, backward_pass};
-pub use track::{ImmStep, ImmTrack, ImmTransition};
+pub use step::{ImmStep, ImmTransition};
+pub use track::ImmTrack;

@@ -5,7 +5,7 @@ use argus_core_math::{Gaussian, MathError};
 use argus_filters::SmoothError;
 
 use super::pair::pair_rts;
-use super::track::{AircraftStep, AircraftTransition};
+use super::step::{AircraftStep, AircraftTransition};
 use crate::aircraft::mixing::kinematic_marginal;
 use crate::markov::log_sum_exp;
 use crate::smooth::{BackwardLikelihood, backward_pass};

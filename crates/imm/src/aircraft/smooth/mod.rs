@@ -67,6 +67,7 @@
 mod backward;
 mod mode_track;
 mod pair;
+mod step;
 mod track;
 
 #[cfg(test)]
@@ -74,4 +75,5 @@ mod tests;
 
 pub use backward::{AircraftSmoothed, aircraft_smooth};
 pub use pair::PairTransition;
-pub use track::{AircraftStep, AircraftTrack, AircraftTransition};
+pub use step::{AircraftStep, AircraftTransition};
+pub use track::AircraftTrack;
