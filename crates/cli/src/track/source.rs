@@ -23,7 +23,6 @@ use std::path::Path;
 use argus_asterix::DataSource;
 use argus_sensors::{Plot, SensorId};
 
-use super::schema::{SensorTable, Source};
 use super::spec::Sensor;
 use crate::asterix_io::plots::{radar_data, rotation_of};
 use crate::asterix_io::{self, source_of};
@@ -50,26 +49,6 @@ pub(super) struct PlotSource {
     pub(super) markers: Vec<f64>,
     /// Rotations from CAT034.
     pub(super) rotations: Vec<MessageRotation>,
-}
-
-/// A `[[sensor]]`'s `sac` and `sic`: both or neither.
-///
-/// # Errors
-/// [`CliError::Input`] at the one given without the other.
-pub(super) fn data_source(
-    src: Source<'_>,
-    id: u32,
-    s: &SensorTable,
-) -> Result<Option<DataSource>, CliError> {
-    match (&s.sac, &s.sic) {
-        (Some(sac), Some(sic)) => Ok(Some(DataSource {
-            sac: *sac.get_ref(),
-            sic: *sic.get_ref(),
-        })),
-        (None, None) => Ok(None),
-        (Some(sac), None) => Err(src.at(sac, "sic", format!("sensor {id}: sac needs sic"))),
-        (None, Some(sic)) => Err(src.at(sic, "sac", format!("sensor {id}: sic needs sac"))),
-    }
 }
 
 /// The data source a sensor answers to: its keys, or `id = 256 · SAC + SIC`.

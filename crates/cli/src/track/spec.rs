@@ -3,6 +3,7 @@
 //! single-target estimators use them as they are, the tracker maps them onto its own
 //! configuration ([`super::tracker_config`]).
 
+use argus_asterix::DataSource;
 use argus_imm::{AircraftTuning, Augmentation, PROBABILITY_SUM_TOL};
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use argus_tracker::{Rotation, RotationDirection};
@@ -149,10 +150,26 @@ pub(super) fn sensors(
             sigma_elevation,
             rotation: rotation(src, id, s)?.map(|r| turned(r, grid_rotation)),
             grid_rotation,
-            asterix: super::source::data_source(src, id, s)?,
+            asterix: data_source(src, id, s)?,
         });
     }
     Ok(sensors)
+}
+
+/// A `[[sensor]]`'s `sac` and `sic`: both or neither.
+///
+/// # Errors
+/// [`CliError::Input`] at the one given without the other.
+fn data_source(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<DataSource>, CliError> {
+    match (&s.sac, &s.sic) {
+        (Some(sac), Some(sic)) => Ok(Some(DataSource {
+            sac: *sac.get_ref(),
+            sic: *sic.get_ref(),
+        })),
+        (None, None) => Ok(None),
+        (Some(sac), None) => Err(src.at(sac, "sic", format!("sensor {id}: sac needs sic"))),
+        (None, Some(sic)) => Err(src.at(sic, "sac", format!("sensor {id}: sic needs sac"))),
+    }
 }
 
 /// A sensor's `position = [x, y]` or `[x, y, z]` (z = 0 when omitted), finite.
