@@ -8,7 +8,8 @@
 
 use argus_tracker::{Plot, Tracker, TrackerConfig, TrackerError};
 
-use super::multi::{Files, Tally, plot_error, tracker_plot};
+use super::multi_files::{Files, plot_error, tracker_plot};
+use super::tally::Tally;
 use crate::error::CliError;
 use crate::plotfile::FilePlot;
 

@@ -15,7 +15,9 @@ mod geo;
 mod job;
 mod mode_record;
 mod multi;
+mod multi_files;
 mod multi_smooth;
+mod names;
 mod rows;
 mod schema;
 mod single;
@@ -30,6 +32,7 @@ mod source;
 mod spec;
 mod start;
 mod stream;
+mod tally;
 #[cfg(test)]
 mod tests;
 mod tracker_config;
@@ -83,7 +86,7 @@ pub fn run(
         }
         job::Job::Multi(m) => {
             let mut m = m.clone();
-            let mut files = multi::Files {
+            let mut files = multi_files::Files {
                 config,
                 plots: plots_path,
                 out,

@@ -2,41 +2,20 @@
 //! grouped into scans by `(time, sensor)` in file order, one row per track per scan with
 //! its id and status, and a JSON summary (see `docs/FORMATS.md`).
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use argus_sensors::Measurement;
-use argus_tracker::{
-    AssociationConfig, DeletionReason, EstimatorConfig, Plot, ScanReport, SensorId, Track,
-    TrackStatus, Tracker, TrackerConfig, TrackerError,
-};
+use argus_tracker::{AssociationConfig, EstimatorConfig, TrackStatus, Tracker, TrackerConfig};
 
 use super::feed::Feed;
-use super::geo::Reference;
+use super::multi_files::Files;
 use super::multi_smooth::Recorded;
-use super::rows::{Column, Point, TrackRows};
+use super::rows::{Column, TrackRows};
 use super::smooth::Smoothing;
+use super::tally::{Counts, Tally};
 use super::tracker_config::MultiTarget;
 use crate::error::CliError;
 use crate::output::{AtomicFile, write_atomic};
 use crate::plotfile::FilePlot;
-
-/// Where the run's inputs and outputs are, for errors and the summary.
-pub(super) struct Files<'a> {
-    /// The configuration.
-    pub(super) config: &'a Path,
-    /// The plot file.
-    pub(super) plots: &'a Path,
-    /// The tracks CSV to write.
-    pub(super) out: &'a Path,
-    /// The system reference point (`lat, lon` columns).
-    pub(super) reference: Option<&'a Reference>,
-    /// `--smooth` / `--smooth-lag` ([`super::multi_smooth`]).
-    pub(super) smoothing: Option<Smoothing>,
-    /// Times the tracker advances to with no plot (an ASTERIX file's CAT034 messages,
-    /// [`super::source`]), in order.
-    pub(super) markers: &'a [f64],
-}
 
 /// Gives the sensors the rotations an ASTERIX file's CAT034 messages state (the
 /// configured direction kept; a geodetic site's `north_time` moved by its grid rotation
@@ -79,106 +58,6 @@ pub(super) fn columns(c: &TrackerConfig) -> Vec<Column> {
     cols
 }
 
-/// One row: the track's state at its time, as produced by the scan of `sensor`; with
-/// smoothing, kept until the end of the run ([`Recorded`]).
-pub(super) fn row(
-    out: &mut TrackRows,
-    rec: Option<&mut Recorded>,
-    sensor: SensorId,
-    track: &Track,
-) {
-    if let Some(rec) = rec {
-        rec.push(sensor, track);
-        return;
-    }
-    let reason = track.deletion().map_or("", reason_name);
-    let mu = track.mode_probabilities();
-    let p = Point::new(track.time(), track.estimate())
-        .of_track(sensor.0, track.id().0, status_name(track.status()), reason)
-        .modes(mu.as_ref().map(|m| m.as_slice()))
-        .noise(track.noise_estimate())
-        .turn_rate(track.turn_rate())
-        .score(track.score());
-    out.push(&p);
-}
-
-/// The tracker's plot of a file plot: polar plots go in as they are (the tracker converts
-/// them with its sensor's noise, or the EKF and multi-IMM use them directly), Cartesian
-/// reports with their covariance.
-pub(super) fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliError> {
-    match p.measurement() {
-        Measurement::Cartesian2(_) | Measurement::Polar(_) => Ok(p.plot),
-        Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(CliError::input(
-            files.plots,
-            Some(p.line),
-            None,
-            "the multi-target tracker ([tracker]) tracks 2-D plots (polar or x, y); this plot is 3-D",
-        )),
-    }
-}
-
-/// A [`TrackerError`] about plot `index` of the plots handed to the tracker together,
-/// whose file lines are `lines`, at that plot's line.
-pub(super) fn plot_error(files: &Files<'_>, lines: &[u64], e: TrackerError) -> CliError {
-    let (index, field) = match &e {
-        TrackerError::TimeOrder { index, .. } => (*index, Some("t")),
-        TrackerError::UnknownSensor { index, .. } => (*index, Some("sensor")),
-        TrackerError::NoPolarNoise { index, .. } | TrackerError::NotPolar { index, .. } => {
-            (*index, Some("sensor"))
-        }
-        TrackerError::NonPositiveRange { index, .. } | TrackerError::Conversion { index, .. } => {
-            (*index, Some("range"))
-        }
-        TrackerError::NonFinite { index, .. }
-        | TrackerError::PlotCovariance { index, .. }
-        | TrackerError::MixedScan { index, .. } => (*index, None),
-        _ => return CliError::Tracker(e),
-    };
-    let line = lines.get(index).copied();
-    CliError::input(files.plots, line, field, format!("tracker: {e}"))
-}
-
-/// The CSV name of a status.
-pub(super) fn status_name(s: TrackStatus) -> &'static str {
-    match s {
-        TrackStatus::Tentative => "tentative",
-        TrackStatus::Confirmed => "confirmed",
-        TrackStatus::Deleted => "deleted",
-    }
-}
-
-/// The CSV and JSON name of a deletion reason.
-pub(super) fn reason_name(r: DeletionReason) -> &'static str {
-    match r {
-        DeletionReason::NotConfirmed => "not-confirmed",
-        DeletionReason::Misses => "misses",
-        DeletionReason::CovarianceGrowth => "covariance-growth",
-        DeletionReason::FilterFailure => "filter-failure",
-        DeletionReason::Score => "score",
-    }
-}
-
-/// Every deletion reason, for the summary's zero counts.
-const REASONS: [DeletionReason; 5] = [
-    DeletionReason::NotConfirmed,
-    DeletionReason::Misses,
-    DeletionReason::CovarianceGrowth,
-    DeletionReason::FilterFailure,
-    DeletionReason::Score,
-];
-
-/// Track counts over the run, for the summary.
-#[derive(Debug, Default, serde::Serialize)]
-struct Counts {
-    initiated: usize,
-    confirmed: usize,
-    deleted: usize,
-    deleted_by_reason: BTreeMap<&'static str, usize>,
-    deleted_after_confirmation: usize,
-    tentative_at_end: usize,
-    confirmed_at_end: usize,
-}
-
 /// `<out>.summary.json`.
 #[derive(Debug, serde::Serialize)]
 struct Summary<'a> {
@@ -200,68 +79,6 @@ struct Summary<'a> {
     /// With smoothing: the tracks smoothed (those confirmed at some scan).
     #[serde(skip_serializing_if = "Option::is_none")]
     smoothed_tracks: Option<usize>,
-}
-
-/// What the reports add up to, and the rows they give.
-pub(super) struct Tally<'a> {
-    out: &'a mut TrackRows,
-    /// The smoothing recorder (`--smooth`): rows go there instead.
-    recorded: Option<&'a mut Recorded>,
-    counts: Counts,
-    scans: usize,
-    assigned: usize,
-}
-
-impl<'a> Tally<'a> {
-    /// A tally writing its rows to `out`, or to `recorded` for smoothing.
-    pub(super) fn new(out: &'a mut TrackRows, recorded: Option<&'a mut Recorded>) -> Self {
-        Self {
-            out,
-            recorded,
-            counts: Counts {
-                deleted_by_reason: REASONS.iter().map(|r| (reason_name(*r), 0)).collect(),
-                ..Counts::default()
-            },
-            scans: 0,
-            assigned: 0,
-        }
-    }
-
-    /// Counts one report (a scan or a sector) and writes its rows: every track of a
-    /// synchronous scan; the tracks a sector visited (updated or missed), initiated (at
-    /// the second plot's time, as a scan's first row of a track) and deleted. In id order (live tracks are in id order; a deleted one goes in its
-    /// place).
-    pub(super) fn record(&mut self, tracker: &mut Tracker, report: &ScanReport) {
-        self.scans += 1;
-        self.assigned += report.assigned;
-        let counts = &mut self.counts;
-        counts.initiated += report.initiated.len();
-        counts.confirmed += report.confirmed.len();
-        counts.deleted += report.deleted.len();
-        let deleted = tracker.take_deleted();
-        for d in &deleted {
-            if let Some(r) = d.deletion() {
-                *counts.deleted_by_reason.entry(reason_name(r)).or_insert(0) += 1;
-            }
-            if d.confirmed_at().is_some() {
-                counts.deleted_after_confirmation += 1;
-            }
-        }
-        let mut all: Vec<&Track> = tracker
-            .tracks()
-            .iter()
-            .filter(|tr| {
-                !report.sector
-                    || report.visited.binary_search(&tr.id()).is_ok()
-                    || report.initiated.contains(&tr.id())
-            })
-            .chain(&deleted)
-            .collect();
-        all.sort_by_key(|tr| tr.id());
-        for tr in all {
-            row(self.out, self.recorded.as_deref_mut(), report.sensor, tr);
-        }
-    }
 }
 
 /// The summary's path beside the tracks file: `<stem>.summary.json`.

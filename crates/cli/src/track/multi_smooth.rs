@@ -81,7 +81,7 @@ use argus_tracker::{
 };
 
 use super::mode_record::ModeRecorder;
-use super::multi::{reason_name, status_name};
+use super::names::{reason_name, status_name};
 use super::rows::{Column, Point, TrackRows};
 use super::smooth::{self, Failure, Smoothing, rts_rows};
 use super::smooth_aircraft::AircraftRecorder;

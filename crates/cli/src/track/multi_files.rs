@@ -1,0 +1,65 @@
+//! The multi-target job's files (for errors and the summary), and what it says of a plot
+//! the tracker cannot take.
+
+use argus_sensors::Measurement;
+use argus_tracker::{Plot, TrackerError};
+
+use std::path::Path;
+
+use super::geo::Reference;
+use super::smooth::Smoothing;
+use crate::error::CliError;
+use crate::plotfile::FilePlot;
+
+/// Where the run's inputs and outputs are, for errors and the summary.
+pub(super) struct Files<'a> {
+    /// The configuration.
+    pub(super) config: &'a Path,
+    /// The plot file.
+    pub(super) plots: &'a Path,
+    /// The tracks CSV to write.
+    pub(super) out: &'a Path,
+    /// The system reference point (`lat, lon` columns).
+    pub(super) reference: Option<&'a Reference>,
+    /// `--smooth` / `--smooth-lag` ([`super::multi_smooth`]).
+    pub(super) smoothing: Option<Smoothing>,
+    /// Times the tracker advances to with no plot (an ASTERIX file's CAT034 messages,
+    /// [`super::source`]), in order.
+    pub(super) markers: &'a [f64],
+}
+
+/// The tracker's plot of a file plot: polar plots go in as they are (the tracker converts
+/// them with its sensor's noise, or the EKF and multi-IMM use them directly), Cartesian
+/// reports with their covariance.
+pub(super) fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliError> {
+    match p.measurement() {
+        Measurement::Cartesian2(_) | Measurement::Polar(_) => Ok(p.plot),
+        Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(CliError::input(
+            files.plots,
+            Some(p.line),
+            None,
+            "the multi-target tracker ([tracker]) tracks 2-D plots (polar or x, y); this plot is 3-D",
+        )),
+    }
+}
+
+/// A [`TrackerError`] about plot `index` of the plots handed to the tracker together,
+/// whose file lines are `lines`, at that plot's line.
+pub(super) fn plot_error(files: &Files<'_>, lines: &[u64], e: TrackerError) -> CliError {
+    let (index, field) = match &e {
+        TrackerError::TimeOrder { index, .. } => (*index, Some("t")),
+        TrackerError::UnknownSensor { index, .. } => (*index, Some("sensor")),
+        TrackerError::NoPolarNoise { index, .. } | TrackerError::NotPolar { index, .. } => {
+            (*index, Some("sensor"))
+        }
+        TrackerError::NonPositiveRange { index, .. } | TrackerError::Conversion { index, .. } => {
+            (*index, Some("range"))
+        }
+        TrackerError::NonFinite { index, .. }
+        | TrackerError::PlotCovariance { index, .. }
+        | TrackerError::MixedScan { index, .. } => (*index, None),
+        _ => return CliError::Tracker(e),
+    };
+    let line = lines.get(index).copied();
+    CliError::input(files.plots, line, field, format!("tracker: {e}"))
+}

@@ -1,0 +1,116 @@
+//! What the tracker's reports add up to over a run (the summary's counts), and the rows
+//! they give: written to the tracks CSV, or kept for smoothing ([`Recorded`]).
+
+use std::collections::BTreeMap;
+
+use argus_tracker::{DeletionReason, ScanReport, SensorId, Track, Tracker};
+
+use super::multi_smooth::Recorded;
+use super::names::{reason_name, status_name};
+use super::rows::{Point, TrackRows};
+
+/// Every deletion reason, for the summary's zero counts.
+const REASONS: [DeletionReason; 5] = [
+    DeletionReason::NotConfirmed,
+    DeletionReason::Misses,
+    DeletionReason::CovarianceGrowth,
+    DeletionReason::FilterFailure,
+    DeletionReason::Score,
+];
+
+/// Track counts over the run, for the summary.
+#[derive(Debug, Default, serde::Serialize)]
+pub(super) struct Counts {
+    pub(super) initiated: usize,
+    pub(super) confirmed: usize,
+    pub(super) deleted: usize,
+    pub(super) deleted_by_reason: BTreeMap<&'static str, usize>,
+    pub(super) deleted_after_confirmation: usize,
+    pub(super) tentative_at_end: usize,
+    pub(super) confirmed_at_end: usize,
+}
+
+/// What the reports add up to, and the rows they give.
+pub(super) struct Tally<'a> {
+    pub(super) out: &'a mut TrackRows,
+    /// The smoothing recorder (`--smooth`): rows go there instead.
+    recorded: Option<&'a mut Recorded>,
+    pub(super) counts: Counts,
+    pub(super) scans: usize,
+    pub(super) assigned: usize,
+}
+
+impl<'a> Tally<'a> {
+    /// A tally writing its rows to `out`, or to `recorded` for smoothing.
+    pub(super) fn new(out: &'a mut TrackRows, recorded: Option<&'a mut Recorded>) -> Self {
+        Self {
+            out,
+            recorded,
+            counts: Counts {
+                deleted_by_reason: REASONS.iter().map(|r| (reason_name(*r), 0)).collect(),
+                ..Counts::default()
+            },
+            scans: 0,
+            assigned: 0,
+        }
+    }
+
+    /// Counts one report (a scan or a sector) and writes its rows: every track of a
+    /// synchronous scan; the tracks a sector visited (updated or missed), initiated (at
+    /// the second plot's time, as a scan's first row of a track) and deleted. In id order (live tracks are in id order; a deleted one goes in its
+    /// place).
+    pub(super) fn record(&mut self, tracker: &mut Tracker, report: &ScanReport) {
+        self.scans += 1;
+        self.assigned += report.assigned;
+        let counts = &mut self.counts;
+        counts.initiated += report.initiated.len();
+        counts.confirmed += report.confirmed.len();
+        counts.deleted += report.deleted.len();
+        let deleted = tracker.take_deleted();
+        for d in &deleted {
+            if let Some(r) = d.deletion() {
+                *counts.deleted_by_reason.entry(reason_name(r)).or_insert(0) += 1;
+            }
+            if d.confirmed_at().is_some() {
+                counts.deleted_after_confirmation += 1;
+            }
+        }
+        let mut all: Vec<&Track> = tracker
+            .tracks()
+            .iter()
+            .filter(|tr| {
+                !report.sector
+                    || report.visited.binary_search(&tr.id()).is_ok()
+                    || report.initiated.contains(&tr.id())
+            })
+            .chain(&deleted)
+            .collect();
+        all.sort_by_key(|tr| tr.id());
+        for tr in all {
+            row(self.out, self.recorded.as_deref_mut(), report.sensor, tr);
+        }
+    }
+}
+
+/// One row: the track's state at its time, as produced by the scan of `sensor`; with
+/// smoothing, kept until the end of the run ([`Recorded`]).
+pub(super) fn row(
+    out: &mut TrackRows,
+    rec: Option<&mut Recorded>,
+    sensor: SensorId,
+    track: &Track,
+) {
+    if let Some(rec) = rec {
+        rec.push(sensor, track);
+        return;
+    }
+    let reason = track.deletion().map_or("", reason_name);
+    let mu = track.mode_probabilities();
+    let p = Point::new(track.time(), track.estimate())
+        .of_track(sensor.0, track.id().0, status_name(track.status()), reason)
+        .modes(mu.as_ref().map(|m| m.as_slice()))
+        .noise(track.noise_estimate())
+        .turn_rate(track.turn_rate())
+        .score(track.score());
+    out.push(&p);
+}
