@@ -145,9 +145,9 @@ def bench_imm(t: np.ndarray, z: np.ndarray) -> "tuple[float, float, float]":
     (checked below to 1e-6 relative before anything is timed). Timed in interleaved
     rounds, the best of each side over all rounds, so that both see the same states of
     the machine: per round the best of 20 Argus calls (~0.1 ms each) and one FilterPy
-    call (~0.1–0.3 s), ten rounds. Also returns the best time (20 calls a round) of Argus's IMM on the raw
-    polar plots (its unbiased conversion per plot inside the run, each plot its own R),
-    which FilterPy's filters cannot take as they are."""
+    call (~0.1–0.3 s), ten rounds. Also returns the best time (20 calls a round) of
+    Argus's IMM on the raw polar plots (its unbiased conversion per plot inside the run,
+    each plot its own R), which FilterPy's filters cannot take as they are."""
     omega = np.deg2rad(3.0)
     m = np.array([[0.95, 0.025, 0.025], [0.05, 0.95, 0.0], [0.05, 0.0, 0.95]])
     mu0 = np.array([0.8, 0.1, 0.1])

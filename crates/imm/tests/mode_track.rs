@@ -1,8 +1,8 @@
-//! [`ModeTrack`] and [`ForwardRecord`], the one interface of the IMM's and the aircraft IMM's recorded tracks:
-//! a record built through it is the one built by the track's own methods, its smoother
-//! over all steps is the track's fixed-interval smoother and over a window the smoother of
-//! that window's steps (bit for bit: the same arithmetic), and a bad window or a failed
-//! record gives an error, never a panic.
+//! [`ModeTrack`] and [`ForwardRecord`], the one interface of the IMM's and the aircraft
+//! IMM's recorded tracks: a record built through it is the one built by the track's own
+//! methods, its smoother over all steps is the track's fixed-interval smoother and over a
+//! window the smoother of that window's steps (bit for bit: the same arithmetic), and a bad
+//! window or a failed record gives an error, never a panic.
 
 // A test binary: a panic on an unexpected error is the failure report.
 #![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]

@@ -1,10 +1,10 @@
 //! The multi-target job's files (for errors and the summary), and what it says of a plot
 //! the tracker cannot take.
 
+use std::path::Path;
+
 use argus_sensors::Measurement;
 use argus_tracker::{Plot, TrackerError};
-
-use std::path::Path;
 
 use super::geo::Reference;
 use super::smooth::Smoothing;

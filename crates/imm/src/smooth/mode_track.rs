@@ -1,7 +1,8 @@
 //! [`ModeTrack`] and [`ForwardRecord`]: what code that records a multiple-model
-//! estimator's forward pass and smooths it needs of the track, so that it is written once for the IMM
-//! ([`crate::ImmTrack`]) and the aircraft IMM ([`crate::AircraftTrack`]) — a tracker's
-//! track rows smoothed after the run, a batch of plots smoothed by windows (fixed lag).
+//! estimator's forward pass and smooths it needs of the track, so that it is written once
+//! for the IMM ([`crate::ImmTrack`]) and the aircraft IMM ([`crate::AircraftTrack`]) — a
+//! tracker's track rows smoothed after the run, a batch of plots smoothed by windows
+//! (fixed lag).
 
 use argus_core_math::Gaussian;
 use argus_filters::SmoothingFilter;

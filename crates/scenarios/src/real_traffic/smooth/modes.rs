@@ -1,8 +1,8 @@
 //! The smoothing of a multiple-model track's rows over its recorded mode-conditioned
 //! states, written once for the two-mode CV IMM (`argus_imm::ImmTrack`) and the aircraft
-//! IMM (`argus_imm::AircraftTrack`) through their [`ForwardRecord`]: the forward record rebuilt
-//! row by row, then the smoother's combined means put back into the rows (the parent
-//! module's docs).
+//! IMM (`argus_imm::AircraftTrack`) through their [`ForwardRecord`]: the forward record
+//! rebuilt row by row, then the smoother's combined means put back into the rows (the
+//! parent module's docs).
 
 use argus_core_math::Vector;
 use argus_imm::ForwardRecord;
