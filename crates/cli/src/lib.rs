@@ -3,6 +3,13 @@
 //! ([`track_files`]) or as a stream ([`TrackStream`]), with the command's error type
 //! ([`CliError`]). File formats: `docs/FORMATS.md`.
 //!
+//! The `argus track` configuration is read and checked by `argus_config` (its
+//! [`Location`] re-exported here), the plot, ASTERIX and tracks files read and written
+//! by `argus_io`; this crate holds the commands, the estimators and tracker runs of
+//! `argus track`, summaries, figures and the progress bar. Their errors become a
+//! [`CliError`] of the same text (`From<argus_config::ConfigError>`,
+//! `From<argus_io::IoError>`).
+//!
 //! Errors are printed once (`error: <file>:<line>: field '<f>': <what>`) and the process
 //! exits with code 2; nothing a user feeds in panics.
 

@@ -9,7 +9,7 @@
 use argus_geo::{Enu, GeoError, Geodetic, LocalFrame, RadarSite};
 use toml::Spanned;
 
-use crate::ConfigError;
+use crate::error::ConfigError;
 use crate::schema::{ReferenceTable, SensorTable, Source};
 use argus_sensors::{Measurement, Plot, PolarMeasurement, SphericalMeasurement, wrap_angle};
 
@@ -151,7 +151,7 @@ pub(crate) fn sensor_position(
 }
 
 /// `p` in the reference frame: the azimuth of a polar or spherical plot of a geodetic
-/// site turned by its `γ` (`rotations`: `(sensor, γ)`, [`sensor_position`]) and wrapped to
+/// site turned by its `γ` (`rotations`: `(sensor, γ)`, `sensor_position`) and wrapped to
 /// (−π, π]; every other plot as it is.
 pub fn to_reference(rotations: &[(u32, f64)], p: Plot) -> Plot {
     let Some(&(_, gamma)) = rotations.iter().find(|(id, _)| *id == p.sensor().0) else {
@@ -176,14 +176,15 @@ pub fn to_reference(rotations: &[(u32, f64)], p: Plot) -> Plot {
 
 #[cfg(test)]
 mod tests {
-    use crate::{ConfigError, Job, Loaded};
+    use crate::error::ConfigError;
+    use crate::job::{Job, Loaded};
 
     /// Loads `text` as a configuration file.
     fn load(text: &str) -> Result<Loaded, ConfigError> {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("g.toml");
         std::fs::write(&p, text).unwrap();
-        crate::load(&p)
+        crate::job::load(&p)
     }
 
     const EST: &str = "\n[estimator]\nkind = \"kf-converted\"\nsigma_a = 1.0\n";

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use crate::ConfigError;
+use crate::error::ConfigError;
 use crate::geo::{self, Reference};
 use crate::schema::{self, Source};
 use crate::spec::{self, Estimator, Sensor};
@@ -40,7 +40,7 @@ pub struct Loaded {
 }
 
 impl Loaded {
-    /// `p` in the reference frame ([`geo::to_reference`]).
+    /// `p` in the reference frame ([`crate::to_reference`]).
     pub fn to_reference(&self, p: Plot) -> Plot {
         geo::to_reference(&self.grid_rotations, p)
     }

@@ -10,7 +10,7 @@ use std::path::Path;
 use serde::Deserialize;
 use toml::Spanned;
 
-use crate::ConfigError;
+use crate::error::ConfigError;
 
 /// The whole file.
 #[derive(Debug, Deserialize)]

@@ -9,7 +9,7 @@ use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use argus_tracker::{Rotation, RotationDirection};
 use toml::Spanned;
 
-use crate::ConfigError;
+use crate::error::ConfigError;
 use crate::geo::{self, Reference};
 use crate::schema::{
     EstimatorKind, EstimatorTable, Mixing, ModelKind, RotationKind, SensorTable, Source,
@@ -33,7 +33,7 @@ pub struct Sensor {
     /// Its ASTERIX data source (`sac`, `sic`; default `256 · SAC + SIC = id`).
     pub asterix: Option<argus_asterix::DataSource>,
     /// `γ` (rad): a geodetic site's own east axis from the reference frame's, by which
-    /// its plots' azimuths are turned ([`crate::geo::sensor_position`]); 0 for a sensor
+    /// its plots' azimuths are turned (`geo::sensor_position`); 0 for a sensor
     /// given by `position`.
     pub grid_rotation: f64,
 }

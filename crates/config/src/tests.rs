@@ -3,7 +3,7 @@
 
 use argus_tracker::{AssociationConfig, EstimatorConfig, SensorId, TrackerConfig};
 
-use crate::ConfigError;
+use crate::error::ConfigError;
 use crate::job::{Job, load};
 use crate::spec::{Estimator, MultiSpec, Sensor};
 use crate::tracker_config::{DEFAULT_MAX_EXACT_EVENTS, MultiTarget};

@@ -1,7 +1,7 @@
 //! The multi-target job: the checked sensors and estimator and the `[tracker]` table
 //! mapped onto [`TrackerConfig`], whose [`TrackerConfig::validate`] is the one check of
 //! the tracker's values (its fields are mapped back to the file's keys by
-//! [`crate::errors::config_error`]).
+//! [`crate::tracker_errors::config_error`]).
 
 use std::ops::Range;
 
@@ -11,10 +11,10 @@ use argus_tracker::{
 };
 use toml::Spanned;
 
-use crate::ConfigError;
-use crate::errors::config_error;
+use crate::error::ConfigError;
 use crate::schema::{EstimatorTable, File, ModelKind, Source, TrackerTable};
 use crate::spec::{Estimator, Sensor};
+use crate::tracker_errors::config_error;
 
 /// `max_exact_events` when `association = "jpda"` does not give it (the default of
 /// `argus run surveillance`'s `jpda_max_events`).

@@ -5,7 +5,7 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use crate::IoError;
+use crate::error::IoError;
 
 /// Writes `bytes` to `path` through a temporary sibling file and a rename.
 ///

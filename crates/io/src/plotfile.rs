@@ -1,5 +1,5 @@
 //! Plot CSV files (see `docs/FORMATS.md`): one codec, reading and writing the same
-//! columns through one column schema ([`Layout`]); reading names file, line and field in
+//! columns through one column schema (`Layout`); reading names file, line and field in
 //! every error.
 
 use std::path::Path;
@@ -10,7 +10,7 @@ use argus_sensors::{
 };
 use argus_sim::{LabelledPlot, Origin};
 
-use crate::IoError;
+use crate::error::IoError;
 
 /// The columns of every plot file, before the measurement's.
 const TIME: &str = "t";
@@ -433,7 +433,7 @@ fn csv_error(path: &Path, e: csv::Error) -> IoError {
 
 /// Plot file text for simulated plots, in the layout of the first plot (polar,
 /// spherical, Cartesian 2-D or 3-D; plots of another layout are skipped and counted), the
-/// columns of [`Layout`]. Includes the `origin` column (`target:<id>` or `clutter`) —
+/// columns of `Layout`. Includes the `origin` column (`target:<id>` or `clutter`) —
 /// `argus track` ignores it.
 pub fn write_text(plots: &[LabelledPlot]) -> (String, usize) {
     let layout = plots

@@ -7,7 +7,7 @@ use std::fmt::Write as _;
 use argus_core_math::Gaussian;
 use argus_imm::NoiseVariances;
 
-use crate::IoError;
+use crate::error::IoError;
 use crate::output::AtomicFile;
 use argus_config::Reference;
 

@@ -13,7 +13,7 @@
 //!   configured `revolution_period` / `north_time` (the radar's own word), and make a
 //!   sensor without one a rotating radar.
 //! - Every north-marker or sector-crossing time is a point the tracker advances to
-//!   ([`argus_tracker::Tracker::advance_to`]): sectors that ended by then are processed
+//!   (`argus_tracker::Tracker::advance_to`): sectors that ended by then are processed
 //!   even when no plot follows.
 //! - Errors about a plot name the ASTERIX record's 1-based number where a CSV error names
 //!   the line.
@@ -23,9 +23,9 @@ use std::path::Path;
 use argus_asterix::DataSource;
 use argus_sensors::{Plot, SensorId};
 
-use crate::IoError;
 use crate::asterix::plots::{radar_data, rotation_of};
 use crate::asterix::{self, source_of};
+use crate::error::IoError;
 use crate::plotfile::FilePlot;
 use argus_config::Sensor;
 

@@ -15,7 +15,7 @@ use argus_sensors::{Measurement, Plot};
 
 use super::plots::DAY;
 use super::source_of;
-use crate::IoError;
+use crate::error::IoError;
 use crate::output::write_atomic;
 
 /// Records per CAT048 block (one block per datagram): 64 reports of 15 bytes keep a

@@ -18,11 +18,11 @@ use std::path::Path;
 use argus_asterix::{DataSource, Record, Skip};
 use argus_capture::Skipped;
 
-use crate::IoError;
+use crate::error::IoError;
 
 /// What a file holds, by content.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Content {
+pub(crate) enum Content {
     /// A pcap or pcapng capture.
     Capture,
     /// Concatenated ASTERIX data blocks.
@@ -38,7 +38,7 @@ impl Content {
     /// The content of `bytes`: the capture magics, else a first ASTERIX block of a known
     /// category whose length fits the file and which decodes to at least one record, else
     /// CSV (whose header starts with a column name).
-    pub fn sniff(bytes: &[u8]) -> Self {
+    pub(crate) fn sniff(bytes: &[u8]) -> Self {
         if argus_capture::Format::sniff(bytes) != argus_capture::Format::Other {
             return Self::Capture;
         }
@@ -137,7 +137,7 @@ const SNIFF_BYTES: u64 = 65_536;
 ///
 /// # Errors
 /// As [`read`].
-pub fn read_bytes(bytes: &[u8], path: &Path) -> Result<Option<Surveillance>, IoError> {
+pub(crate) fn read_bytes(bytes: &[u8], path: &Path) -> Result<Option<Surveillance>, IoError> {
     let mut out = Surveillance::default();
     // The capture times are not used: I048/140 and I034/030 give each record's time.
     let push = |datagram: usize, payload: &[u8], out: &mut Surveillance| {
@@ -173,7 +173,7 @@ pub fn sensor_of(source: DataSource) -> u32 {
 
 /// The data source of a sensor number without a configuration (the inverse of
 /// [`sensor_of`]); `None` above 65 535.
-pub fn source_of(sensor: u32) -> Option<DataSource> {
+pub(crate) fn source_of(sensor: u32) -> Option<DataSource> {
     let v = u16::try_from(sensor).ok()?;
     let [sac, sic] = v.to_be_bytes();
     Some(DataSource { sac, sic })

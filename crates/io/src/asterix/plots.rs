@@ -7,7 +7,7 @@ use argus_asterix::{DataSource, MessageType, Record};
 use super::Surveillance;
 
 /// Seconds in a day: I048/140 and I034/030 count from midnight UTC.
-pub const DAY: f64 = 86_400.0;
+pub(crate) const DAY: f64 = 86_400.0;
 
 /// A CAT048 report with a data source, a time and a measured polar position.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -16,7 +16,7 @@ pub struct RadarPlot {
     pub number: u64,
     /// I048/010.
     pub source: DataSource,
-    /// I048/140 on the file's time line (s, see [`Clock`]).
+    /// I048/140 on the file's time line (s, one day after another across midnight).
     pub time: f64,
     /// I048/040 RHO (m).
     pub range: f64,
@@ -53,14 +53,14 @@ pub struct RadarData {
 /// Times of day made one time line: a time more than half a day before the last one
 /// seen is the next day's (the record crossed midnight); `t = day · 86 400 + tod`.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct Clock {
+pub(crate) struct Clock {
     day: u32,
     last: Option<f64>,
 }
 
 impl Clock {
     /// The time-line time of a time of day (s).
-    pub fn at(&mut self, tod: f64) -> f64 {
+    pub(crate) fn at(&mut self, tod: f64) -> f64 {
         if let Some(last) = self.last
             && tod + DAY / 2.0 < last
         {
@@ -119,7 +119,7 @@ pub fn radar_data(s: &Surveillance) -> RadarData {
 /// A radar's rotation as its CAT034 messages give it: the first I034/041 period, and
 /// the phase of its first north marker (`north_time` in `[0, period)`). `None` without
 /// both.
-pub fn rotation_of(services: &[Service], source: DataSource) -> Option<(f64, f64)> {
+pub(crate) fn rotation_of(services: &[Service], source: DataSource) -> Option<(f64, f64)> {
     let mine = || services.iter().filter(move |s| s.source == source);
     let period = mine().find_map(|s| s.period).filter(|p| *p > 0.0)?;
     let north = mine().find(|s| s.kind == MessageType::NorthMarker)?.time;

@@ -9,7 +9,7 @@ use argus_asterix::{Cartesian062, Cat062, DataSource, ItemId, Record, TimeOfDay,
 use super::Surveillance;
 use super::encode::Encoded;
 use super::plots::{Clock, DAY};
-use crate::IoError;
+use crate::error::IoError;
 
 /// Reports per CAT062 block (one block per datagram): 64 of 20 bytes.
 const RECORDS_PER_BLOCK: usize = 64;

@@ -9,7 +9,7 @@ use argus_tracker::{
 };
 use toml::Spanned;
 
-use crate::ConfigError;
+use crate::error::ConfigError;
 use crate::schema::{File, ScoreTable, Source, TrackerTable};
 
 /// The `[[sensor]]` key of a sensor field the tracker checks again (a missing polar
