@@ -18,8 +18,9 @@ use std::fmt::Write as _;
 use std::ops::Range;
 use std::path::Path;
 
+use argus_io::output::write_atomic;
+
 use crate::error::CliError;
-use crate::output::write_atomic;
 use crate::shard::shard_range;
 
 /// What to plan.

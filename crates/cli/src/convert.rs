@@ -15,14 +15,15 @@
 
 use std::path::Path;
 
-use crate::asterix_io::adsb::adsb_csv;
-use crate::asterix_io::encode::{self, Container, Sweep};
-use crate::asterix_io::plots::radar_data;
-use crate::asterix_io::tracks::{encode_tracks, tracks_csv};
-use crate::asterix_io::{self, sensor_of};
+use argus_io::asterix::adsb::adsb_csv;
+use argus_io::asterix::encode::{self, Container, Sweep};
+use argus_io::asterix::plots::radar_data;
+use argus_io::asterix::tracks::{encode_tracks, tracks_csv};
+use argus_io::asterix::{self, sensor_of};
+use argus_io::output::write_atomic;
+use argus_io::plotfile;
+
 use crate::error::CliError;
-use crate::output::write_atomic;
-use crate::plotfile;
 
 /// Runs the conversion; returns the lines to print.
 ///
@@ -36,7 +37,7 @@ pub(crate) fn run(
 ) -> Result<Vec<String>, CliError> {
     let container = Container::of(output);
     let mut lines = Vec::new();
-    match (asterix_io::read(input)?, container) {
+    match (asterix::read(input)?, container) {
         (Some(s), None) => {
             if let Some(note) = s.skipped_note(input) {
                 lines.push(note);

@@ -2,31 +2,9 @@
 
 use std::path::PathBuf;
 
+use argus_config::{ConfigError, Location};
+use argus_io::IoError;
 use argus_scenarios::{ParamProblem, ScenarioError};
-
-/// Where a bad value sits in an input file.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Location {
-    /// The file.
-    pub file: PathBuf,
-    /// 1-based line number, when known.
-    pub line: Option<u64>,
-    /// The field (CSV column or TOML key), when known.
-    pub field: Option<String>,
-}
-
-impl std::fmt::Display for Location {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}", self.file.display())?;
-        if let Some(line) = self.line {
-            write!(f, ":{line}")?;
-        }
-        if let Some(field) = &self.field {
-            write!(f, ": field '{field}'")?;
-        }
-        Ok(())
-    }
-}
 
 /// What went wrong in a command. Printed once, without a backtrace; the process exits
 /// with code 2.
@@ -146,6 +124,49 @@ impl From<ScenarioError> for CliError {
                 format!("not a record of this scenario: {message}"),
             ),
             e => Self::Scenario(e),
+        }
+    }
+}
+
+impl From<ConfigError> for CliError {
+    /// Each configuration error as the variant it is printed by (the same text).
+    fn from(e: ConfigError) -> Self {
+        match e {
+            ConfigError::Input { at, message } => Self::Input { at, message },
+            ConfigError::Io { path, source } => Self::Io { path, source },
+            ConfigError::Motion(e) => Self::Motion(e),
+            // `ConfigError` is `#[non_exhaustive]`: a variant added later keeps its text.
+            e => Self::Usage(e.to_string()),
+        }
+    }
+}
+
+impl From<IoError> for CliError {
+    /// Each file error as the variant it is printed by (the same text).
+    fn from(e: IoError) -> Self {
+        match e {
+            IoError::Input { at, message } => Self::Input { at, message },
+            IoError::Io { path, source } => Self::Io { path, source },
+            IoError::Capture { file, source } => Self::Capture { file, source },
+            IoError::UnknownSource {
+                file,
+                record,
+                sac,
+                sic,
+                config,
+                known,
+            } => Self::UnknownSource {
+                file,
+                record,
+                sac,
+                sic,
+                config,
+                known,
+            },
+            IoError::Encode(message) => Self::Usage(message),
+            IoError::Score(e) => Self::Score(e),
+            // `IoError` is `#[non_exhaustive]`: a variant added later keeps its text.
+            e => Self::Usage(e.to_string()),
         }
     }
 }

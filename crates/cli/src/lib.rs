@@ -3,6 +3,13 @@
 //! ([`track_files`]) or as a stream ([`TrackStream`]), with the command's error type
 //! ([`CliError`]). File formats: `docs/FORMATS.md`.
 //!
+//! The `argus track` configuration is read and checked by `argus_config` (its
+//! [`Location`] re-exported here), the plot, ASTERIX and tracks files read and written
+//! by `argus_io`; this crate holds the commands, the estimators and tracker runs of
+//! `argus track`, summaries, figures and the progress bar. Their errors become a
+//! [`CliError`] of the same text (`From<argus_config::ConfigError>`,
+//! `From<argus_io::IoError>`).
+//!
 //! Errors are printed once (`error: <file>:<line>: field '<f>': <what>`) and the process
 //! exits with code 2; nothing a user feeds in panics.
 
@@ -16,15 +23,12 @@ macro_rules! say {
     }};
 }
 
-mod asterix_io;
 mod campaign_plan;
 mod campaign_scan;
 mod convert;
 mod error;
 mod estimator;
 mod merge_error;
-mod output;
-mod plotfile;
 mod progress;
 mod render;
 mod runs_file;
@@ -33,9 +37,10 @@ mod shard;
 mod summary;
 mod track;
 
-pub use crate::error::{CliError, Location};
+pub use crate::error::CliError;
 pub use crate::merge_error::MergeError;
 pub use crate::track::{Smoothing, TrackStream, run as track_files};
+pub use argus_config::Location;
 
 use std::io::IsTerminal;
 use std::ops::Range;
@@ -47,9 +52,11 @@ use clap::{Parser, Subcommand};
 use argus_filters::Lag;
 use argus_scenarios::{Params, Scenario};
 
-use crate::asterix_io::encode::{Container, Sweep};
 use crate::progress::Bar;
 use crate::summary::{RunInfo, table_text};
+use argus_io::asterix::encode::{self, Container, Sweep};
+use argus_io::output::write_atomic;
+use argus_io::plotfile;
 
 /// Radar target tracking: reproduce the seed papers' experiments, simulate plots, track.
 #[derive(Debug, Parser)]
@@ -321,7 +328,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
             let mut extra = Vec::new();
             if let Some(text) = runs_text {
                 let path = runs_file::runs_file(&out, &runs);
-                output::write_atomic(&path, text.as_bytes())?;
+                write_atomic(&path, text.as_bytes())?;
                 extra.push(path.display().to_string());
             }
             let info = RunInfo {
@@ -426,12 +433,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                 (_, Some(c)) => Some(c),
                 (Some(PlotFormat::Asterix), None) => Some(Container::Pcap),
             };
-            let asterix = container.map(|c| {
-                (
-                    c,
-                    asterix_io::encode::sweep(&params, revolution_period, sectors),
-                )
-            });
+            let asterix = container.map(|c| (c, sweep(&params, revolution_period, sectors)));
             if let Some(sim) = sc.simulated(&params, seed, run) {
                 let sim = sim?;
                 write_plot_file(&out, &sim.plots, asterix)?;
@@ -442,7 +444,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                         r.t, r.target, r.x, r.vx, r.y, r.vy
                     ));
                 }
-                output::write_atomic(&truth_path, t_text.as_bytes())?;
+                write_atomic(&truth_path, t_text.as_bytes())?;
                 say!(
                     "wrote {} ({} plots) and {}",
                     out.display(),
@@ -475,7 +477,7 @@ fn execute(cli: Cli) -> Result<(), CliError> {
                     }
                 }
             }
-            output::write_atomic(&truth_path, t_text.as_bytes())?;
+            write_atomic(&truth_path, t_text.as_bytes())?;
             say!(
                 "wrote {} ({} plots) and {}",
                 out.display(),
@@ -606,8 +608,8 @@ fn write_plot_file(
 ) -> Result<(), CliError> {
     if let Some((container, sweep)) = asterix {
         let plain: Vec<argus_sensors::Plot> = plots.iter().map(|p| p.plot).collect();
-        let enc = asterix_io::encode::encode_plots(&plain, sweep.as_ref())?;
-        return asterix_io::encode::write(out, &enc, container);
+        let enc = encode::encode_plots(&plain, sweep.as_ref())?;
+        return Ok(encode::write(out, &enc, container)?);
     }
     let (text, skipped) = plotfile::write_text(plots);
     if skipped > 0 {
@@ -615,5 +617,20 @@ fn write_plot_file(
             "{skipped} plots of another layout cannot share one file"
         )));
     }
-    output::write_atomic(out, text.as_bytes())
+    Ok(write_atomic(out, text.as_bytes())?)
+}
+
+/// The sweep of a scenario's radar for `argus simulate`: `--revolution-period` when
+/// given, else the scenario's `period` parameter when it also has `north_time` (the
+/// rotating radar of real-traffic), `clockwise` ≥ 0.5 (default) north → east. `None`
+/// (no CAT034) for a scenario without a rotating radar.
+fn sweep(params: &Params, revolution_period: Option<f64>, sectors: u32) -> Option<Sweep> {
+    let m = params.as_map();
+    let period = revolution_period.or_else(|| m.get("north_time").and(m.get("period").copied()))?;
+    Some(Sweep {
+        period,
+        north_time: m.get("north_time").copied().unwrap_or(0.0),
+        clockwise: m.get("clockwise").is_none_or(|c| *c >= 0.5),
+        sectors,
+    })
 }

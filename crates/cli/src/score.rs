@@ -4,10 +4,10 @@
 
 use std::path::Path;
 
+use argus_io::output::write_atomic;
 use argus_score::{ScoreConfig, Scorer, read_tracks, read_truth};
 
 use crate::error::CliError;
-use crate::output::write_atomic;
 
 /// Scores `tracks` against `truth` with the grid `step` (s) and assignment `cutoff` (m),
 /// writes the score to `out` (JSON, atomically) and returns the summary's lines for stdout.

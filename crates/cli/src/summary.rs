@@ -4,11 +4,11 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use argus_io::output::{csv_text, write_atomic};
 use argus_scenarios::{Report, Row};
 use serde::Serialize;
 
 use crate::error::CliError;
-use crate::output::{csv_text, write_atomic};
 use crate::render;
 
 /// The document written as `summary.json`.

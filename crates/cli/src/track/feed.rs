@@ -6,12 +6,12 @@
 //! is kept but the plots of the current `(time, sensor)`, so a file of any length is
 //! tracked in the memory of its busiest instant.
 
+use argus_io::plotfile::FilePlot;
 use argus_tracker::{Plot, Tracker, TrackerConfig, TrackerError};
 
 use super::multi_files::{Files, plot_error, tracker_plot};
 use super::tally::Tally;
 use crate::error::CliError;
-use crate::plotfile::FilePlot;
 
 /// The plots of the current `(time, sensor)` and their file lines.
 pub(super) struct Feed {

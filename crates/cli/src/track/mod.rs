@@ -1,25 +1,21 @@
 //! `argus track`: a configured estimator, or the multi-target tracker, over a user's plot
 //! file (see `docs/FORMATS.md`).
 //!
-//! One pipeline: the configuration file is parsed once ([`schema`]), its sensors and
-//! estimator checked once with every default filled in ([`spec`]); with a `[tracker]`
-//! table that is mapped onto the tracker's configuration ([`tracker_config`], whose
-//! errors [`errors`] maps back to the file's keys). The [`job`] is then one target
-//! ([`single`], [`single_imm`], [`single_aircraft`], started by the one two-point start
-//! of [`start`] or, for the aircraft IMM, its own) or the
-//! multi-target tracker ([`multi`]); both write their rows through [`rows`].
+//! One pipeline: the configuration file is read and checked once by `argus_config`
+//! ([`argus_config::load`]: the sensors, the estimator with every default filled in, the
+//! `[tracker]` table mapped onto the tracker's configuration), the plot file read by
+//! `argus_io` (the plot CSV, or ASTERIX for the configured sensors). The
+//! [`argus_config::Job`] is then one target ([`single`], [`single_imm`],
+//! [`single_aircraft`], started by the one two-point start of [`start`] or, for the
+//! aircraft IMM, its own) or the multi-target tracker ([`multi`]); both write their rows
+//! through [`argus_io::rows`].
 
-mod errors;
 mod feed;
-mod geo;
-mod job;
 mod mode_record;
 mod multi;
 mod multi_files;
 mod multi_smooth;
 mod names;
-mod rows;
-mod schema;
 mod single;
 mod single_aircraft;
 mod single_dim;
@@ -28,26 +24,23 @@ mod single_smooth;
 mod smooth;
 mod smooth_aircraft;
 mod smooth_imm;
-mod source;
-mod spec;
 mod start;
 mod stream;
 mod tally;
-#[cfg(test)]
-mod tests;
-mod tracker_config;
 
 use std::path::{Path, PathBuf};
 
 pub use smooth::Smoothing;
 pub use stream::TrackStream;
 
+use argus_config::Job;
+use argus_io::output::write_atomic;
+use argus_io::{plotfile, source};
+
 use crate::error::CliError;
-use crate::output::write_atomic;
-use crate::plotfile;
 
 /// Runs `argus track`: the configuration at `config` over the plot file `plots_path`
-/// (CSV, or ASTERIX known by its content, as the `track::source` module reads it),
+/// (CSV, or ASTERIX known by its content, as [`argus_io::source`] reads it),
 /// the tracks CSV to `out` (the multi-target tracker also writes `<out>.summary.json`),
 /// with the smoothed columns when `smoothing` is given. Returns the number of rows written
 /// and the summary's path (multi-target only).
@@ -61,17 +54,20 @@ pub fn run(
     out: &Path,
     smoothing: Option<Smoothing>,
 ) -> Result<(usize, Option<PathBuf>), CliError> {
-    let loaded = job::load_all(config)?;
+    let loaded = argus_config::load(config)?;
     let reference = loaded.reference.as_ref();
     // `None` for CSV, which is then read as before (streamed for the tracker).
     let asterix = source::read(plots_path, config, &loaded.sensors)?;
     match &loaded.job {
-        job::Job::Single { sensors, estimator } => {
+        Job::Single { sensors, estimator } => {
             let plots = match &asterix {
                 Some(a) => a.plots.clone(),
                 None => plotfile::read(plots_path)?,
             };
-            let plots: Vec<_> = plots.into_iter().map(|p| loaded.to_reference(p)).collect();
+            let plots: Vec<_> = plots
+                .into_iter()
+                .map(|p| p.to_reference(&loaded.grid_rotations))
+                .collect();
             let ctx = start::Ctx {
                 config,
                 plots_path,
@@ -84,7 +80,7 @@ pub fn run(
             write_atomic(out, rows.into_text().as_bytes())?;
             Ok((n, None))
         }
-        job::Job::Multi(m) => {
+        Job::Multi(m) => {
             let mut m = m.clone();
             let mut files = multi_files::Files {
                 config,
@@ -98,12 +94,17 @@ pub fn run(
                 Some(a) => {
                     multi::set_rotations(&mut m, &a.rotations, &loaded.grid_rotations);
                     files.markers = &a.markers;
-                    let plots = a.plots.iter().map(|p| Ok(loaded.to_reference(*p)));
+                    let plots = a
+                        .plots
+                        .iter()
+                        .map(|p| Ok(p.to_reference(&loaded.grid_rotations)));
                     multi::run(&m, &files, plots)?
                 }
                 None => {
-                    let plots = plotfile::PlotReader::open(plots_path)?
-                        .map(|p| p.map(|p| loaded.to_reference(p)));
+                    let plots = plotfile::PlotReader::open(plots_path)?.map(|p| {
+                        p.map(|p| p.to_reference(&loaded.grid_rotations))
+                            .map_err(CliError::from)
+                    });
                     multi::run(&m, &files, plots)?
                 }
             };

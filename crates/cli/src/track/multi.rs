@@ -4,25 +4,25 @@
 
 use std::path::{Path, PathBuf};
 
+use argus_config::MultiTarget;
+use argus_io::output::{AtomicFile, write_atomic};
+use argus_io::plotfile::FilePlot;
+use argus_io::rows::{Column, TrackRows};
 use argus_tracker::{AssociationConfig, EstimatorConfig, TrackStatus, Tracker, TrackerConfig};
 
 use super::feed::Feed;
 use super::multi_files::Files;
 use super::multi_smooth::Recorded;
-use super::rows::{Column, TrackRows};
 use super::smooth::Smoothing;
 use super::tally::{Counts, Tally};
-use super::tracker_config::MultiTarget;
 use crate::error::CliError;
-use crate::output::{AtomicFile, write_atomic};
-use crate::plotfile::FilePlot;
 
 /// Gives the sensors the rotations an ASTERIX file's CAT034 messages state (the
 /// configured direction kept; a geodetic site's `north_time` moved by its grid rotation
-/// `γ`, as a configured one is, [`super::spec::turned`]).
+/// `γ`, as a configured one is, [`argus_config::turned`]).
 pub(super) fn set_rotations(
     m: &mut MultiTarget,
-    rotations: &[super::source::MessageRotation],
+    rotations: &[argus_io::source::MessageRotation],
     grid_rotations: &[(u32, f64)],
 ) {
     for r in rotations {
@@ -35,7 +35,7 @@ pub(super) fn set_rotations(
             let stated = argus_tracker::Rotation::clockwise(r.period)
                 .with_direction(direction)
                 .with_north_time(r.north_time);
-            s.rotation = Some(super::spec::turned(stated, gamma));
+            s.rotation = Some(argus_config::turned(stated, gamma));
         }
     }
 }

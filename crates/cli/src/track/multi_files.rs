@@ -3,13 +3,13 @@
 
 use std::path::Path;
 
+use argus_config::Reference;
+use argus_io::plotfile::FilePlot;
 use argus_sensors::Measurement;
 use argus_tracker::{Plot, TrackerError};
 
-use super::geo::Reference;
 use super::smooth::Smoothing;
 use crate::error::CliError;
-use crate::plotfile::FilePlot;
 
 /// Where the run's inputs and outputs are, for errors and the summary.
 pub(super) struct Files<'a> {

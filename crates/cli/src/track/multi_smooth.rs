@@ -74,6 +74,7 @@ use argus_filters::Kf;
 use argus_imm::{
     AircraftEkf, AircraftEstimate, ForwardRecord, ImmEstimate, MultiImmEstimate, NoiseVariances,
 };
+use argus_io::rows::{Column, Point, TrackRows};
 use argus_motion_models::Cv2D;
 use argus_tracker::{
     DeletionReason, EstimatorConfig, MULTI_IMM_HYPOTHESES, ModeProbabilities, SensorId, Track,
@@ -82,7 +83,6 @@ use argus_tracker::{
 
 use super::mode_record::ModeRecorder;
 use super::names::{reason_name, status_name};
-use super::rows::{Column, Point, TrackRows};
 use super::smooth::{self, Failure, Smoothing, rts_rows};
 use super::smooth_aircraft::AircraftRecorder;
 use super::smooth_imm::ImmRecorder;

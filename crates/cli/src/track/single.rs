@@ -3,19 +3,19 @@
 //! a 3-D CV estimator; the IMMs ([`super::single_imm`], [`super::single_aircraft`]) are
 //! 2-D. One row per estimate.
 
+use argus_config::Estimator;
 use argus_core_math::Gaussian;
 use argus_filters::SmoothingFilter;
+use argus_io::plotfile::FilePlot;
+use argus_io::rows::{Column, Point, TrackRows};
 use argus_sensors::Measurement;
 
-use super::rows::{Column, Point, TrackRows};
 use super::single_dim::{DIM2, DIM3, Dim};
 use super::smooth;
-use super::spec::Estimator;
 use super::start::{Ctx, two_point};
 use super::{single_aircraft, single_imm};
 use crate::error::CliError;
 use crate::estimator::{cv_ekf, cv_kf, cv3_ekf, cv3_kf, polar, spherical, step};
-use crate::plotfile::FilePlot;
 
 /// Runs `estimator` over `plots` (in file order, already checked by `plotfile`).
 ///

@@ -8,18 +8,18 @@
 //! combined state, its variances and the smoothed mode probabilities
 //! ([`super::smooth_aircraft`]).
 
+use argus_config::Sensor;
 use argus_core_math::Vector;
 use argus_imm::{AircraftEstimate, AircraftRadar, AircraftSmoothed, AircraftTuning};
+use argus_io::plotfile::FilePlot;
+use argus_io::rows::{Column, Point, TrackRows};
 use argus_sensors::{Measurement, RadarNoise};
 
-use super::rows::{Column, Point, TrackRows};
 use super::single_smooth::smooth_run;
 use super::smooth::Failure;
 use super::smooth_aircraft::AircraftRecorder;
-use super::spec::Sensor;
 use super::start::{Ctx, too_few};
 use crate::error::CliError;
-use crate::plotfile::FilePlot;
 
 /// The aircraft IMM of `tuning` over the polar plots of one sensor. Plots of the same
 /// instant are applied in turn without mixing or prediction.

@@ -4,12 +4,12 @@
 
 use argus_core_math::{Gaussian, Matrix};
 use argus_filters::{GaussianFilter, two_point_cv2, two_point_cv3};
+use argus_io::plotfile::FilePlot;
 use argus_sensors::CartesianPosition;
 
 use super::start::{Converted, Ctx, TwoPoint};
 use crate::error::CliError;
 use crate::estimator::{position, position3, step};
-use crate::plotfile::FilePlot;
 
 /// One dimension's parts: `D` the position's dimension, `N` the CV state's.
 pub(super) struct Dim<const D: usize, const N: usize> {

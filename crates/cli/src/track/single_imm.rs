@@ -17,24 +17,24 @@
 //! as for the tracker's IMM-JPDA tracks). The smoothed mode probabilities go to
 //! `mu_1s …`, as for the IMM.
 
+use argus_config::{ImmSpec, MAX_MODELS, MultiSpec};
 use argus_core_math::Gaussian;
 use argus_filters::{Kf, two_point_cv2};
 use argus_imm::{
     Imm, ImmError, ImmEstimate, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid,
     NoiseVariances, UnbiasedConversion,
 };
+use argus_io::plotfile::FilePlot;
+use argus_io::rows::{Column, Point, TrackRows};
 use argus_motion_models::PlanarModel;
 use argus_sensors::Measurement;
 
-use super::rows::{Column, Point, TrackRows};
 use super::single_smooth::smooth_run;
 use super::smooth::Failure;
 use super::smooth_imm::ImmRecorder;
-use super::spec::{ImmSpec, MAX_MODELS, MultiSpec};
 use super::start::{Ctx, too_few, two_point};
 use crate::error::CliError;
 use crate::estimator::position;
-use crate::plotfile::FilePlot;
 
 /// Calls `$f::<R>(args…)` for the run-time mode count `R ∈ 1 … MAX_MODELS`.
 macro_rules! by_modes {

@@ -4,16 +4,16 @@
 
 use std::path::Path;
 
+use argus_config::Reference;
+use argus_config::Sensor;
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::FilterError;
+use argus_io::plotfile::FilePlot;
 use argus_sensors::Measurement;
 
-use super::geo::Reference;
 use super::smooth::Smoothing;
-use super::spec::Sensor;
 use crate::error::CliError;
 use crate::estimator::{unbiased, unbiased3};
-use crate::plotfile::FilePlot;
 
 /// A converted plot: a global Cartesian position and its covariance.
 pub(super) type Converted<const D: usize> = (Vector<D>, Matrix<D, D>);

@@ -4,18 +4,16 @@
 
 use std::path::{Path, PathBuf};
 
+use argus_config::{Job, MultiTarget, Reference};
+use argus_io::plotfile::{self, FilePlot};
+use argus_io::rows::TrackRows;
 use argus_tracker::Tracker;
 
 use super::feed::Feed;
-use super::geo::{self, Reference};
-use super::job::{self, Job};
 use super::multi;
 use super::multi_files::Files;
-use super::rows::TrackRows;
 use super::tally::Tally;
-use super::tracker_config::MultiTarget;
 use crate::error::CliError;
-use crate::plotfile::{self, FilePlot};
 
 /// The multi-target tracker of an `argus track` configuration (one with a `[tracker]`
 /// table), fed plot file text a batch at a time.
@@ -25,7 +23,7 @@ pub struct TrackStream {
     tracker: Tracker,
     config: PathBuf,
     reference: Option<Reference>,
-    /// Geodetic sites' `(sensor, γ)` ([`geo::to_reference`]).
+    /// Geodetic sites' `(sensor, γ)` ([`FilePlot::to_reference`]).
     grid_rotations: Vec<(u32, f64)>,
 }
 
@@ -36,7 +34,7 @@ impl TrackStream {
     /// As `argus track` for the configuration; [`CliError::Input`] when it has no
     /// `[tracker]` table (a single-target configuration).
     pub fn new(config: &Path) -> Result<Self, CliError> {
-        let loaded = job::load_all(config)?;
+        let loaded = argus_config::load(config)?;
         match loaded.job {
             Job::Multi(m) => Ok(Self {
                 tracker: Tracker::new(m.config.clone())?,
@@ -85,7 +83,7 @@ impl TrackStream {
         let mut tally = Tally::new(&mut out, None);
         let mut feed = Feed::new(&self.job.config);
         for p in plots {
-            let p = geo::to_reference(&self.grid_rotations, *p);
+            let p = p.to_reference(&self.grid_rotations);
             feed.push(&mut self.tracker, &mut tally, &files, &p)?;
         }
         // The call's last plots are a whole scan; a rotating sensor's sector stays open

@@ -3,11 +3,11 @@
 
 use std::collections::BTreeMap;
 
+use argus_io::rows::{Point, TrackRows};
 use argus_tracker::{DeletionReason, ScanReport, SensorId, Track, Tracker};
 
 use super::multi_smooth::Recorded;
 use super::names::{reason_name, status_name};
-use super::rows::{Point, TrackRows};
 
 /// Every deletion reason, for the summary's zero counts.
 const REASONS: [DeletionReason; 5] = [

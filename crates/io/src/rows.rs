@@ -7,16 +7,16 @@ use std::fmt::Write as _;
 use argus_core_math::Gaussian;
 use argus_imm::NoiseVariances;
 
-use super::geo::Reference;
-use crate::error::CliError;
+use crate::error::IoError;
 use crate::output::AtomicFile;
+use argus_config::Reference;
 
 /// The state components' names, `[x, vx, y, vy, z, vz]`.
 const STATE: [&str; 6] = ["x", "vx", "y", "vy", "z", "vz"];
 
 /// One column of a tracks CSV.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Column {
+pub enum Column {
     /// `t`: the estimate's time (s).
     Time,
     /// `sensor`: the sensor of the scan that produced the row.
@@ -88,11 +88,11 @@ impl Column {
     }
 
     /// The aircraft IMM's turn-rate columns, after its mode probabilities.
-    pub(super) const TURN_RATE: [Self; 2] = [Self::TurnRateDeg, Self::SigmaTurnRateDeg];
+    pub const TURN_RATE: [Self; 2] = [Self::TurnRateDeg, Self::SigmaTurnRateDeg];
 
     /// The single-target job's smoothed columns (`--smooth`): the smoothed state of
     /// `axes` axes, its variances and `modes` smoothed mode probabilities.
-    pub(super) fn smoothed_single(axes: usize, modes: usize) -> Vec<Self> {
+    pub fn smoothed_single(axes: usize, modes: usize) -> Vec<Self> {
         let n = 2 * axes;
         let mut c: Vec<Self> = (0..n).map(Self::Smoothed).collect();
         c.extend((0..n).map(Self::SmoothedVariance));
@@ -102,7 +102,7 @@ impl Column {
 
     /// The tracker's smoothed columns: `xs, vxs, ys, vys, sigma_xs, sigma_ys`, then
     /// `modes` smoothed mode probabilities (`mu_1s, …`; the IMM's).
-    pub(super) fn smoothed_tracker(modes: usize) -> Vec<Self> {
+    pub fn smoothed_tracker(modes: usize) -> Vec<Self> {
         let mut c: Vec<Self> = (0..4).map(Self::Smoothed).collect();
         c.extend([
             Self::SmoothedPositionSigma(0),
@@ -114,7 +114,7 @@ impl Column {
 
     /// The single-target columns: `t, track`, the CV state of `axes` axes (2 or 3), its
     /// variances, then `modes` mode probabilities and, with `noise`, the noise estimate.
-    pub(super) fn single(axes: usize, modes: usize, noise: bool) -> Vec<Self> {
+    pub fn single(axes: usize, modes: usize, noise: bool) -> Vec<Self> {
         let n = 2 * axes;
         let mut c = vec![Self::Time, Self::Track];
         c.extend((0..n).map(Self::State));
@@ -129,7 +129,7 @@ impl Column {
     /// The multi-target tracker's columns: `t, sensor, track, status, reason`, the 2-D
     /// state and position σ, then `modes` mode probabilities, the noise estimate (with
     /// `noise`) and the track score (with `score`).
-    pub(super) fn tracker(modes: usize, noise: bool, score: bool) -> Vec<Self> {
+    pub fn tracker(modes: usize, noise: bool, score: bool) -> Vec<Self> {
         let mut c = vec![
             Self::Time,
             Self::Sensor,
@@ -152,7 +152,7 @@ impl Column {
 
 /// One track's estimate at one time, and what a row may say about it.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Point<'a> {
+pub struct Point<'a> {
     time: f64,
     mean: &'a [f64],
     cov: &'a [f64],
@@ -172,7 +172,7 @@ pub(super) struct Point<'a> {
 
 impl<'a> Point<'a> {
     /// The estimate `g` at `time`, of track 1 (the single-target job's one track).
-    pub(super) fn new<const N: usize>(time: f64, g: &'a Gaussian<N>) -> Self {
+    pub fn new<const N: usize>(time: f64, g: &'a Gaussian<N>) -> Self {
         Self {
             time,
             mean: g.mean().as_slice(),
@@ -192,7 +192,7 @@ impl<'a> Point<'a> {
     }
 
     /// With the smoothed estimate `g` of the same state (`None`: empty cells).
-    pub(super) fn smoothed<const N: usize>(self, g: Option<&'a Gaussian<N>>) -> Self {
+    pub fn smoothed<const N: usize>(self, g: Option<&'a Gaussian<N>>) -> Self {
         let smoothed = g
             .filter(|_| N == self.dim)
             .map(|g| (g.mean().as_slice(), g.cov().as_slice()));
@@ -200,7 +200,7 @@ impl<'a> Point<'a> {
     }
 
     /// With smoothed IMM mode probabilities (`None`: empty cells).
-    pub(super) fn smoothed_modes(self, smoothed_modes: Option<&'a [f64]>) -> Self {
+    pub fn smoothed_modes(self, smoothed_modes: Option<&'a [f64]>) -> Self {
         Self {
             smoothed_modes,
             ..self
@@ -208,13 +208,7 @@ impl<'a> Point<'a> {
     }
 
     /// A tracker's track: its id, status and deletion reason, of the scan of `sensor`.
-    pub(super) fn of_track(
-        self,
-        sensor: u32,
-        track: u64,
-        status: &'a str,
-        reason: &'a str,
-    ) -> Self {
+    pub fn of_track(self, sensor: u32, track: u64, status: &'a str, reason: &'a str) -> Self {
         Self {
             sensor,
             track,
@@ -225,22 +219,22 @@ impl<'a> Point<'a> {
     }
 
     /// With IMM mode probabilities (`None`: empty cells).
-    pub(super) fn modes(self, modes: Option<&'a [f64]>) -> Self {
+    pub fn modes(self, modes: Option<&'a [f64]>) -> Self {
         Self { modes, ..self }
     }
 
     /// With the multi-IMM's noise estimate (`None`: empty cells).
-    pub(super) fn noise(self, noise: Option<NoiseVariances>) -> Self {
+    pub fn noise(self, noise: Option<NoiseVariances>) -> Self {
         Self { noise, ..self }
     }
 
     /// With the aircraft IMM's turn rate and its σ, rad/s (`None`: empty cells).
-    pub(super) fn turn_rate(self, turn_rate: Option<(f64, f64)>) -> Self {
+    pub fn turn_rate(self, turn_rate: Option<(f64, f64)>) -> Self {
         Self { turn_rate, ..self }
     }
 
     /// With a track score.
-    pub(super) fn score(self, score: f64) -> Self {
+    pub fn score(self, score: f64) -> Self {
         Self { score, ..self }
     }
 
@@ -258,7 +252,7 @@ impl<'a> Point<'a> {
 
 /// A tracks CSV being written: the header, then one line per [`TrackRows::push`].
 #[derive(Debug)]
-pub(super) struct TrackRows {
+pub struct TrackRows {
     columns: Vec<Column>,
     text: String,
     rows: usize,
@@ -267,7 +261,7 @@ pub(super) struct TrackRows {
 
 impl TrackRows {
     /// An empty file with the header of `columns`.
-    pub(super) fn new(columns: Vec<Column>) -> Self {
+    pub fn new(columns: Vec<Column>) -> Self {
         let names: Vec<String> = columns.iter().map(|c| c.name()).collect();
         let mut text = names.join(",");
         text.push('\n');
@@ -281,7 +275,7 @@ impl TrackRows {
 
     /// An empty file with the header of `columns` and, with a `reference`, the `lat, lon`
     /// of each row's `x, y` (at the reference's altitude, [`Reference::lat_lon`]) last.
-    pub(super) fn with_reference(mut columns: Vec<Column>, reference: Option<&Reference>) -> Self {
+    pub fn with_reference(mut columns: Vec<Column>, reference: Option<&Reference>) -> Self {
         if reference.is_some() {
             columns.extend([Column::Lat, Column::Lon]);
         }
@@ -292,7 +286,7 @@ impl TrackRows {
     }
 
     /// Appends the row of `p`.
-    pub(super) fn push(&mut self, p: &Point<'_>) {
+    pub fn push(&mut self, p: &Point<'_>) {
         let lat_lon = match (self.reference, p.mean.first(), p.mean.get(2)) {
             (Some(r), Some(&x), Some(&y)) => r.lat_lon(x, y).ok(),
             _ => None,
@@ -334,12 +328,12 @@ impl TrackRows {
     }
 
     /// The rows written so far (the header not counted).
-    pub(super) fn rows(&self) -> usize {
+    pub fn rows(&self) -> usize {
         self.rows
     }
 
     /// The file's text.
-    pub(super) fn into_text(self) -> String {
+    pub fn into_text(self) -> String {
         self.text
     }
 
@@ -347,15 +341,15 @@ impl TrackRows {
     /// file as a stream, holding only the rows since the last call.
     ///
     /// # Errors
-    /// [`CliError::Io`].
-    pub(super) fn write_to(&mut self, file: &mut AtomicFile) -> Result<(), CliError> {
+    /// [`IoError::Io`].
+    pub fn write_to(&mut self, file: &mut AtomicFile) -> Result<(), IoError> {
         file.write(self.text.as_bytes())?;
         self.text.clear();
         Ok(())
     }
 
     /// The length of the text not yet written (bytes).
-    pub(super) fn pending(&self) -> usize {
+    pub fn pending(&self) -> usize {
         self.text.len()
     }
 }

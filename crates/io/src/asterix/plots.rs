@@ -11,43 +11,43 @@ pub(crate) const DAY: f64 = 86_400.0;
 
 /// A CAT048 report with a data source, a time and a measured polar position.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct RadarPlot {
+pub struct RadarPlot {
     /// 1-based record number in the file.
-    pub(crate) number: u64,
+    pub number: u64,
     /// I048/010.
-    pub(crate) source: DataSource,
-    /// I048/140 on the file's time line (s, see [`Clock`]).
-    pub(crate) time: f64,
+    pub source: DataSource,
+    /// I048/140 on the file's time line (s, one day after another across midnight).
+    pub time: f64,
     /// I048/040 RHO (m).
-    pub(crate) range: f64,
+    pub range: f64,
     /// I048/040 θ in Argus's convention (rad, counter-clockwise from east, (−π, π]).
-    pub(crate) azimuth: f64,
+    pub azimuth: f64,
 }
 
 /// A CAT034 message with a data source and a time.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Service {
+pub struct Service {
     /// I034/010.
-    pub(crate) source: DataSource,
+    pub source: DataSource,
     /// I034/030 on the file's time line (s).
-    pub(crate) time: f64,
+    pub time: f64,
     /// I034/000.
-    pub(crate) kind: MessageType,
+    pub kind: MessageType,
     /// I034/041 antenna rotation period (s).
-    pub(crate) period: Option<f64>,
+    pub period: Option<f64>,
 }
 
 /// The radar content of a file: plots and service messages, each in time order.
 #[derive(Debug, Clone, Default)]
-pub(crate) struct RadarData {
+pub struct RadarData {
     /// The plots (stable-sorted by time).
-    pub(crate) plots: Vec<RadarPlot>,
+    pub plots: Vec<RadarPlot>,
     /// The CAT034 messages with a source and a time (stable-sorted by time).
-    pub(crate) services: Vec<Service>,
+    pub services: Vec<Service>,
     /// CAT048 reports without I048/010, /140 or /040, or with RHO = 0: not plots.
-    pub(crate) incomplete: usize,
+    pub incomplete: usize,
     /// Records of other categories (CAT021, CAT062) and CAT034 without source or time.
-    pub(crate) other: usize,
+    pub other: usize,
 }
 
 /// Times of day made one time line: a time more than half a day before the last one
@@ -72,7 +72,7 @@ impl Clock {
 }
 
 /// The plots and service messages of `s`, in time order.
-pub(crate) fn radar_data(s: &Surveillance) -> RadarData {
+pub fn radar_data(s: &Surveillance) -> RadarData {
     let mut out = RadarData::default();
     let mut clock = Clock::default();
     for r in &s.records {

@@ -5,13 +5,13 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use crate::error::CliError;
+use crate::error::IoError;
 
 /// Writes `bytes` to `path` through a temporary sibling file and a rename.
 ///
 /// # Errors
-/// [`CliError::Io`] when the directory cannot be created or the file written or renamed.
-pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+/// [`IoError::Io`] when the directory cannot be created or the file written or renamed.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
     let mut file = AtomicFile::create(path)?;
     file.write(bytes)?;
     file.commit()
@@ -20,7 +20,7 @@ pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
 /// An output file written as a stream: to a temporary sibling file, renamed over `path`
 /// by [`AtomicFile::commit`]; dropped without a commit (an error on the way), the
 /// temporary is removed, so a failed run never leaves a half-written file.
-pub(crate) struct AtomicFile {
+pub struct AtomicFile {
     path: PathBuf,
     tmp: PathBuf,
     file: Option<std::io::BufWriter<std::fs::File>>,
@@ -30,18 +30,18 @@ impl AtomicFile {
     /// Starts writing `path` (its directory created if missing).
     ///
     /// # Errors
-    /// [`CliError::Io`] when the directory or the temporary cannot be created.
-    pub(crate) fn create(path: &Path) -> Result<Self, CliError> {
+    /// [`IoError::Io`] when the directory or the temporary cannot be created.
+    pub fn create(path: &Path) -> Result<Self, IoError> {
         let dir = match path.parent() {
             Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
             _ => PathBuf::from("."),
         };
-        std::fs::create_dir_all(&dir).map_err(|e| CliError::io(&dir, e))?;
+        std::fs::create_dir_all(&dir).map_err(|e| IoError::io(&dir, e))?;
         let name = path
             .file_name()
             .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
         let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-        let file = std::fs::File::create(&tmp).map_err(|e| CliError::io(path, e))?;
+        let file = std::fs::File::create(&tmp).map_err(|e| IoError::io(path, e))?;
         Ok(Self {
             path: path.to_path_buf(),
             tmp,
@@ -52,12 +52,12 @@ impl AtomicFile {
     /// Appends `bytes`.
     ///
     /// # Errors
-    /// [`CliError::Io`] naming the target file.
-    pub(crate) fn write(&mut self, bytes: &[u8]) -> Result<(), CliError> {
+    /// [`IoError::Io`] naming the target file.
+    pub fn write(&mut self, bytes: &[u8]) -> Result<(), IoError> {
         let path = &self.path;
         match self.file.as_mut() {
-            Some(f) => f.write_all(bytes).map_err(|e| CliError::io(path, e)),
-            None => Err(CliError::io(
+            Some(f) => f.write_all(bytes).map_err(|e| IoError::io(path, e)),
+            None => Err(IoError::io(
                 path,
                 std::io::Error::other("already committed"),
             )),
@@ -67,8 +67,8 @@ impl AtomicFile {
     /// Flushes, syncs and renames the temporary over the target.
     ///
     /// # Errors
-    /// [`CliError::Io`] naming the target file (the temporary is then removed).
-    pub(crate) fn commit(mut self) -> Result<(), CliError> {
+    /// [`IoError::Io`] naming the target file (the temporary is then removed).
+    pub fn commit(mut self) -> Result<(), IoError> {
         let result = match self.file.take() {
             Some(f) => f
                 .into_inner()
@@ -77,7 +77,7 @@ impl AtomicFile {
                 .and_then(|()| std::fs::rename(&self.tmp, &self.path)),
             None => Ok(()),
         };
-        result.map_err(|e| CliError::io(&self.path, e))
+        result.map_err(|e| IoError::io(&self.path, e))
     }
 }
 
@@ -91,7 +91,7 @@ impl Drop for AtomicFile {
 
 /// Formats rows of numbers as CSV with a header line (`{}` formatting: shortest
 /// representation that round-trips).
-pub(crate) fn csv_text(header: &[String], rows: &[Vec<f64>]) -> String {
+pub fn csv_text(header: &[String], rows: &[Vec<f64>]) -> String {
     let mut s = header.join(",");
     s.push('\n');
     for r in rows {

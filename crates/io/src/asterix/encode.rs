@@ -15,7 +15,7 @@ use argus_sensors::{Measurement, Plot};
 
 use super::plots::DAY;
 use super::source_of;
-use crate::error::CliError;
+use crate::error::IoError;
 use crate::output::write_atomic;
 
 /// Records per CAT048 block (one block per datagram): 64 reports of 15 bytes keep a
@@ -24,20 +24,20 @@ const RECORDS_PER_BLOCK: usize = 64;
 
 /// A rotating radar's sweep: the CAT034 messages to write.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Sweep {
+pub struct Sweep {
     /// Revolution period (s).
-    pub(crate) period: f64,
+    pub period: f64,
     /// A time the beam points north (s).
-    pub(crate) north_time: f64,
+    pub north_time: f64,
     /// North → east (I034/020 sector numbers increase).
-    pub(crate) clockwise: bool,
+    pub clockwise: bool,
     /// Sector crossings per revolution (the north marker is the first).
-    pub(crate) sectors: u32,
+    pub sectors: u32,
 }
 
 /// How a file of blocks is held.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Container {
+pub enum Container {
     /// A pcap capture of UDP datagrams (`.pcap`).
     Pcap,
     /// Concatenated data blocks (`.ast`, `.asterix`).
@@ -46,7 +46,7 @@ pub(crate) enum Container {
 
 impl Container {
     /// The container an output path's extension asks for.
-    pub(crate) fn of(path: &Path) -> Option<Self> {
+    pub fn of(path: &Path) -> Option<Self> {
         match path.extension()?.to_str()?.to_ascii_lowercase().as_str() {
             "pcap" => Some(Self::Pcap),
             "ast" | "asterix" => Some(Self::Blocks),
@@ -57,17 +57,17 @@ impl Container {
 
 /// The datagrams of an encoding, each at its time (s), and what they hold.
 #[derive(Debug, Clone, Default)]
-pub(crate) struct Encoded {
+pub struct Encoded {
     /// `(time, payload)` in time order.
-    pub(crate) datagrams: Vec<(f64, Vec<u8>)>,
+    pub datagrams: Vec<(f64, Vec<u8>)>,
     /// CAT048 records written.
-    pub(crate) reports: usize,
+    pub reports: usize,
     /// CAT034 records written.
-    pub(crate) messages: usize,
+    pub messages: usize,
 }
 
-fn bad(k: usize, p: &Plot, what: impl std::fmt::Display) -> CliError {
-    CliError::Usage(format!(
+fn bad(k: usize, p: &Plot, what: impl std::fmt::Display) -> IoError {
+    IoError::Encode(format!(
         "plot {} (t = {} s, sensor {}): {what}",
         k + 1,
         p.time(),
@@ -83,7 +83,7 @@ fn tod(item: ItemId, t: f64) -> Result<TimeOfDay, String> {
     TimeOfDay::from_seconds(item, t.rem_euclid(DAY)).map_err(|e| e.to_string())
 }
 
-fn source(k: usize, p: &Plot) -> Result<DataSource, CliError> {
+fn source(k: usize, p: &Plot) -> Result<DataSource, IoError> {
     source_of(p.sensor().0).ok_or_else(|| {
         bad(
             k,
@@ -94,7 +94,7 @@ fn source(k: usize, p: &Plot) -> Result<DataSource, CliError> {
 }
 
 /// The CAT048 report of polar plot `p`.
-fn report(k: usize, p: &Plot) -> Result<Cat048, CliError> {
+fn report(k: usize, p: &Plot) -> Result<Cat048, IoError> {
     let Measurement::Polar(m) = p.measurement() else {
         return Err(bad(
             k,
@@ -123,10 +123,10 @@ fn report(k: usize, p: &Plot) -> Result<Cat048, CliError> {
 }
 
 /// One CAT034 message of boundary `k` of `sweep` at `t` for `source`.
-fn message(sweep: &Sweep, k: i64, t: f64, source: DataSource) -> Result<Cat034, CliError> {
+fn message(sweep: &Sweep, k: i64, t: f64, source: DataSource) -> Result<Cat034, IoError> {
     let n = i64::from(sweep.sectors.max(1));
     let i = k.rem_euclid(n);
-    let usage = |e: String| CliError::Usage(format!("CAT034 message at t = {t} s: {e}"));
+    let usage = |e: String| IoError::Encode(format!("CAT034 message at t = {t} s: {e}"));
     let time = tod(
         ItemId {
             cat: 34,
@@ -164,24 +164,24 @@ struct Packer {
 }
 
 impl Packer {
-    fn flush(&mut self) -> Result<(), CliError> {
+    fn flush(&mut self) -> Result<(), IoError> {
         if self.pending.is_empty() {
             return Ok(());
         }
         let mut bytes = Vec::new();
         encode_block(&self.pending, &mut bytes)
-            .map_err(|e| CliError::Usage(format!("CAT048 block: {e}")))?;
+            .map_err(|e| IoError::Encode(format!("CAT048 block: {e}")))?;
         self.out.reports += self.pending.len();
         self.out.datagrams.push((self.last_time, bytes));
         self.pending.clear();
         Ok(())
     }
 
-    fn messages(&mut self, t: f64, records: &[Cat034]) -> Result<(), CliError> {
+    fn messages(&mut self, t: f64, records: &[Cat034]) -> Result<(), IoError> {
         self.flush()?;
         let mut bytes = Vec::new();
         encode_block(records, &mut bytes)
-            .map_err(|e| CliError::Usage(format!("CAT034 block: {e}")))?;
+            .map_err(|e| IoError::Encode(format!("CAT034 block: {e}")))?;
         self.out.messages += records.len();
         self.out.datagrams.push((t, bytes));
         Ok(())
@@ -194,9 +194,9 @@ impl Packer {
 /// (a north marker every `sectors`-th).
 ///
 /// # Errors
-/// [`CliError::Usage`] for a plot that is not 2-D polar, a negative time, a sensor
+/// [`IoError::Encode`] for a plot that is not 2-D polar, a negative time, a sensor
 /// above 65 535, or a value outside its item's range.
-pub(crate) fn encode_plots(plots: &[Plot], sweep: Option<&Sweep>) -> Result<Encoded, CliError> {
+pub fn encode_plots(plots: &[Plot], sweep: Option<&Sweep>) -> Result<Encoded, IoError> {
     let mut sensors: Vec<u32> = plots.iter().map(|p| p.sensor().0).collect();
     sensors.sort_unstable();
     sensors.dedup();
@@ -244,8 +244,8 @@ pub(crate) fn encode_plots(plots: &[Plot], sweep: Option<&Sweep>) -> Result<Enco
 /// blocks concatenated.
 ///
 /// # Errors
-/// [`CliError::Capture`] for a datagram pcap cannot hold; [`CliError::Io`].
-pub(crate) fn write(out: &Path, enc: &Encoded, container: Container) -> Result<(), CliError> {
+/// [`IoError::Capture`] for a datagram pcap cannot hold; [`IoError::Io`].
+pub fn write(out: &Path, enc: &Encoded, container: Container) -> Result<(), IoError> {
     let bytes = match container {
         Container::Blocks => enc.datagrams.iter().flat_map(|(_, d)| d.clone()).collect(),
         Container::Pcap => {
@@ -260,7 +260,7 @@ pub(crate) fn write(out: &Path, enc: &Encoded, container: Container) -> Result<(
                 })
                 .collect();
             argus_capture::write_pcap(&datagrams, &Endpoints::default()).map_err(|source| {
-                CliError::Capture {
+                IoError::Capture {
                     file: out.to_path_buf(),
                     source,
                 }
@@ -268,25 +268,6 @@ pub(crate) fn write(out: &Path, enc: &Encoded, container: Container) -> Result<(
         }
     };
     write_atomic(out, &bytes)
-}
-
-/// The sweep of a scenario's radar for `argus simulate`: `--revolution-period` when
-/// given, else the scenario's `period` parameter when it also has `north_time` (the
-/// rotating radar of real-traffic), `clockwise` ≥ 0.5 (default) north → east. `None`
-/// (no CAT034) for a scenario without a rotating radar.
-pub(crate) fn sweep(
-    params: &argus_scenarios::Params,
-    revolution_period: Option<f64>,
-    sectors: u32,
-) -> Option<Sweep> {
-    let m = params.as_map();
-    let period = revolution_period.or_else(|| m.get("north_time").and(m.get("period").copied()))?;
-    Some(Sweep {
-        period,
-        north_time: m.get("north_time").copied().unwrap_or(0.0),
-        clockwise: m.get("clockwise").is_none_or(|c| *c >= 0.5),
-        sectors,
-    })
 }
 
 #[cfg(test)]
@@ -336,15 +317,15 @@ mod tests {
         assert_eq!((enc.datagrams.len(), enc.reports, enc.messages), (1, 2, 0));
         let neg = Plot::polar(-1.0, argus_sensors::SensorId(1), 1000.0, 0.0).unwrap();
         assert!(
-            matches!(encode_plots(&[neg], None), Err(CliError::Usage(m)) if m.contains("t ≥ 0"))
+            matches!(encode_plots(&[neg], None), Err(IoError::Encode(m)) if m.contains("t ≥ 0"))
         );
         let far = Plot::polar(0.0, argus_sensors::SensorId(1), 500e3, 0.0).unwrap();
         assert!(
-            matches!(encode_plots(&[far], None), Err(CliError::Usage(m)) if m.contains("I048/040"))
+            matches!(encode_plots(&[far], None), Err(IoError::Encode(m)) if m.contains("I048/040"))
         );
         let big = Plot::polar(0.0, argus_sensors::SensorId(70_000), 1000.0, 0.0).unwrap();
         assert!(
-            matches!(encode_plots(&[big], None), Err(CliError::Usage(m)) if m.contains("65 535"))
+            matches!(encode_plots(&[big], None), Err(IoError::Encode(m)) if m.contains("65 535"))
         );
     }
 }

@@ -14,7 +14,7 @@ use super::plots::Clock;
 /// for position, a target address and a position, in file order: `timestamp` in seconds
 /// of the time line (the first day's midnight is 0, a time more than 12 h before the
 /// previous one is the next day's); and how many CAT021 reports lacked one of the three.
-pub(crate) fn adsb_csv(s: &Surveillance) -> (String, usize, usize) {
+pub fn adsb_csv(s: &Surveillance) -> (String, usize, usize) {
     let mut clock = Clock::default();
     let mut text = String::from("timestamp,icao24,latitude,longitude,sigma_position\n");
     let (mut rows, mut incomplete) = (0, 0);

@@ -5,7 +5,7 @@
 //!
 //! - A `[[sensor]]` is matched by its `sac`, `sic` keys, or else by `id = 256 · SAC +
 //!   SIC`. A CAT048 report of a SAC/SIC no sensor has is an error naming it
-//!   ([`CliError::UnknownSource`]): a capture of several radars needs each of them
+//!   ([`IoError::UnknownSource`]): a capture of several radars needs each of them
 //!   configured (CAT034 messages of other radars are ignored).
 //! - A radar's CAT034 messages give its rotation when they hold an I034/041 period and a
 //!   north marker: the period, and `north_time` the phase of the first north marker; the
@@ -13,7 +13,7 @@
 //!   configured `revolution_period` / `north_time` (the radar's own word), and make a
 //!   sensor without one a rotating radar.
 //! - Every north-marker or sector-crossing time is a point the tracker advances to
-//!   ([`argus_tracker::Tracker::advance_to`]): sectors that ended by then are processed
+//!   (`argus_tracker::Tracker::advance_to`): sectors that ended by then are processed
 //!   even when no plot follows.
 //! - Errors about a plot name the ASTERIX record's 1-based number where a CSV error names
 //!   the line.
@@ -23,32 +23,32 @@ use std::path::Path;
 use argus_asterix::DataSource;
 use argus_sensors::{Plot, SensorId};
 
-use super::spec::Sensor;
-use crate::asterix_io::plots::{radar_data, rotation_of};
-use crate::asterix_io::{self, source_of};
-use crate::error::CliError;
+use crate::asterix::plots::{radar_data, rotation_of};
+use crate::asterix::{self, source_of};
+use crate::error::IoError;
 use crate::plotfile::FilePlot;
+use argus_config::Sensor;
 
 /// A radar's rotation read from its CAT034 messages.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct MessageRotation {
+pub struct MessageRotation {
     /// The configured sensor's id.
-    pub(super) sensor: u32,
+    pub sensor: u32,
     /// I034/041 (s).
-    pub(super) period: f64,
+    pub period: f64,
     /// The first north marker's phase in `[0, period)` (s).
-    pub(super) north_time: f64,
+    pub north_time: f64,
 }
 
 /// What an ASTERIX plot file gives the tracker.
 #[derive(Debug, Clone, Default)]
-pub(super) struct PlotSource {
+pub struct PlotSource {
     /// The plots, in time order.
-    pub(super) plots: Vec<FilePlot>,
+    pub plots: Vec<FilePlot>,
     /// CAT034 message times of the configured radars, in order.
-    pub(super) markers: Vec<f64>,
+    pub markers: Vec<f64>,
     /// Rotations from CAT034.
-    pub(super) rotations: Vec<MessageRotation>,
+    pub rotations: Vec<MessageRotation>,
 }
 
 /// The data source a sensor answers to: its keys, or `id = 256 · SAC + SIC`.
@@ -64,16 +64,12 @@ fn show(d: DataSource) -> String {
 /// (`None`: CSV, which the caller reads, only its first bytes read here).
 ///
 /// # Errors
-/// The CSV reader's errors; for ASTERIX, [`CliError::Capture`] for an unreadable
-/// capture, [`CliError::UnknownSource`] for a report of a radar not configured,
-/// [`CliError::Input`] for two sensors with one SAC/SIC or a plot whose values Argus
+/// The CSV reader's errors; for ASTERIX, [`IoError::Capture`] for an unreadable
+/// capture, [`IoError::UnknownSource`] for a report of a radar not configured,
+/// [`IoError::Input`] for two sensors with one SAC/SIC or a plot whose values Argus
 /// refuses.
-pub(super) fn read(
-    path: &Path,
-    config: &Path,
-    sensors: &[Sensor],
-) -> Result<Option<PlotSource>, CliError> {
-    let Some(surveillance) = asterix_io::read(path)? else {
+pub fn read(path: &Path, config: &Path, sensors: &[Sensor]) -> Result<Option<PlotSource>, IoError> {
+    let Some(surveillance) = asterix::read(path)? else {
         return Ok(None);
     };
     for (k, a) in sensors.iter().enumerate() {
@@ -81,7 +77,7 @@ pub(super) fn read(
             .iter()
             .find(|b| answers_to(a).is_some() && answers_to(a) == answers_to(b))
         {
-            return Err(CliError::input(
+            return Err(IoError::input(
                 config,
                 None,
                 Some("sac"),
@@ -102,7 +98,7 @@ pub(super) fn read(
     let mut plots = Vec::with_capacity(data.plots.len());
     for p in &data.plots {
         let Some(s) = sensor_of(p.source) else {
-            return Err(CliError::UnknownSource {
+            return Err(IoError::UnknownSource {
                 file: path.to_path_buf(),
                 record: p.number,
                 sac: p.source.sac,
@@ -117,7 +113,7 @@ pub(super) fn read(
             });
         };
         let plot = Plot::polar(p.time, SensorId(s.id), p.range, p.azimuth)
-            .map_err(|e| CliError::input(path, Some(p.number), Some("I048/040"), e.to_string()))?;
+            .map_err(|e| IoError::input(path, Some(p.number), Some("I048/040"), e.to_string()))?;
         plots.push(FilePlot {
             line: p.number,
             plot,

@@ -1,5 +1,5 @@
 //! Plot CSV files (see `docs/FORMATS.md`): one codec, reading and writing the same
-//! columns through one column schema ([`Layout`]); reading names file, line and field in
+//! columns through one column schema (`Layout`); reading names file, line and field in
 //! every error.
 
 use std::path::Path;
@@ -10,7 +10,7 @@ use argus_sensors::{
 };
 use argus_sim::{LabelledPlot, Origin};
 
-use crate::error::CliError;
+use crate::error::IoError;
 
 /// The columns of every plot file, before the measurement's.
 const TIME: &str = "t";
@@ -116,27 +116,37 @@ fn upper_3(r: &Matrix<3, 3>) -> [f64; 6] {
 
 /// One plot read from a file, with its 1-based line.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct FilePlot {
+pub struct FilePlot {
     /// 1-based line in the file.
-    pub(crate) line: u64,
+    pub line: u64,
     /// The plot (its amplitude when the file gives one; the `origin` column is not read).
-    pub(crate) plot: Plot,
+    pub plot: Plot,
 }
 
 impl FilePlot {
     /// Its time (s).
-    pub(crate) fn time(&self) -> f64 {
+    pub fn time(&self) -> f64 {
         self.plot.time()
     }
 
     /// Its sensor's number.
-    pub(crate) fn sensor(&self) -> u32 {
+    pub fn sensor(&self) -> u32 {
         self.plot.sensor().0
     }
 
     /// What it measured.
-    pub(crate) fn measurement(&self) -> &Measurement {
+    pub fn measurement(&self) -> &Measurement {
         self.plot.measurement()
+    }
+
+    /// It in the reference frame ([`argus_config::to_reference`]; `rotations`: the
+    /// configuration's `(sensor, γ)`), its line kept.
+    #[must_use]
+    pub fn to_reference(self, rotations: &[(u32, f64)]) -> Self {
+        Self {
+            plot: argus_config::to_reference(rotations, self.plot),
+            ..self
+        }
     }
 }
 
@@ -145,8 +155,8 @@ impl FilePlot {
 /// time non-decreasing.
 ///
 /// # Errors
-/// [`CliError::Input`] naming the file, line and field; [`CliError::Io`].
-pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
+/// [`IoError::Input`] naming the file, line and field; [`IoError::Io`].
+pub fn read(path: &Path) -> Result<Vec<FilePlot>, IoError> {
     PlotReader::open(path)?.collect()
 }
 
@@ -154,7 +164,7 @@ pub(crate) fn read(path: &Path) -> Result<Vec<FilePlot>, CliError> {
 ///
 /// # Errors
 /// As [`read`].
-pub(crate) fn read_text(text: &str, path: &Path) -> Result<Vec<FilePlot>, CliError> {
+pub fn read_text(text: &str, path: &Path) -> Result<Vec<FilePlot>, IoError> {
     PlotReader::new(reader().from_reader(text.as_bytes()), path)?.collect()
 }
 
@@ -168,7 +178,7 @@ fn reader() -> csv::ReaderBuilder {
 /// A plot file read one plot at a time (memory independent of the file's length), with
 /// the checks of [`read`]: the header when opened, each row as it comes. After an error
 /// it yields nothing more.
-pub(crate) struct PlotReader<R> {
+pub struct PlotReader<R> {
     rdr: csv::Reader<R>,
     path: std::path::PathBuf,
     cols: Vec<String>,
@@ -182,8 +192,8 @@ impl PlotReader<std::fs::File> {
     /// The plot file at `path`, its header checked.
     ///
     /// # Errors
-    /// As [`read`], for the header; [`CliError::Io`] when it cannot be opened.
-    pub(crate) fn open(path: &Path) -> Result<Self, CliError> {
+    /// As [`read`], for the header; [`IoError::Io`] when it cannot be opened.
+    pub fn open(path: &Path) -> Result<Self, IoError> {
         let rdr = reader().from_path(path).map_err(|e| csv_error(path, e))?;
         Self::new(rdr, path)
     }
@@ -194,12 +204,12 @@ impl<R: std::io::Read> PlotReader<R> {
     ///
     /// # Errors
     /// As [`read`], for the header.
-    fn new(mut rdr: csv::Reader<R>, path: &Path) -> Result<Self, CliError> {
+    fn new(mut rdr: csv::Reader<R>, path: &Path) -> Result<Self, IoError> {
         let headers = rdr.headers().map_err(|e| csv_error(path, e))?.clone();
         let cols: Vec<String> = headers.iter().map(str::to_owned).collect();
         for c in &cols {
             if !KNOWN.contains(&c.as_str()) {
-                return Err(CliError::input(
+                return Err(IoError::input(
                     path,
                     Some(1),
                     Some(c),
@@ -210,7 +220,7 @@ impl<R: std::io::Read> PlotReader<R> {
         let idx = |name: &str| cols.iter().position(|c| c == name);
         for name in ["t", "sensor"] {
             if idx(name).is_none() {
-                return Err(CliError::input(
+                return Err(IoError::input(
                     path,
                     Some(1),
                     Some(name),
@@ -235,7 +245,7 @@ impl<R: std::io::Read> PlotReader<R> {
             (false, true, false) => Layout::Cartesian2,
             (false, true, true) => Layout::Cartesian3,
             (true, true, _) => {
-                return Err(CliError::input(
+                return Err(IoError::input(
                     path,
                     Some(1),
                     None,
@@ -243,7 +253,7 @@ impl<R: std::io::Read> PlotReader<R> {
                 ));
             }
             (false, false, _) => {
-                return Err(CliError::input(
+                return Err(IoError::input(
                     path,
                     Some(1),
                     None,
@@ -253,7 +263,7 @@ impl<R: std::io::Read> PlotReader<R> {
         };
         for name in layout.all_columns() {
             if idx(name).is_none() {
-                return Err(CliError::input(
+                return Err(IoError::input(
                     path,
                     Some(1),
                     Some(name),
@@ -273,7 +283,7 @@ impl<R: std::io::Read> PlotReader<R> {
     }
 
     /// The next row's plot, or `None` at the end of the file.
-    fn next_plot(&mut self) -> Result<Option<FilePlot>, CliError> {
+    fn next_plot(&mut self) -> Result<Option<FilePlot>, IoError> {
         let path = self.path.as_path();
         if !self
             .rdr
@@ -289,8 +299,8 @@ impl<R: std::io::Read> PlotReader<R> {
         let idx = |name: &str| cols.iter().position(|c| c == name);
         let line = rec.position().map_or(0, csv::Position::line);
         let at =
-            |name: &str, message: String| CliError::input(path, Some(line), Some(name), message);
-        let num = |name: &str| -> Result<f64, CliError> {
+            |name: &str, message: String| IoError::input(path, Some(line), Some(name), message);
+        let num = |name: &str| -> Result<f64, IoError> {
             let raw = idx(name).and_then(|i| rec.get(i)).unwrap_or("");
             let v: f64 = raw
                 .parse()
@@ -395,7 +405,7 @@ impl<R: std::io::Read> PlotReader<R> {
 }
 
 impl<R: std::io::Read> Iterator for PlotReader<R> {
-    type Item = Result<FilePlot, CliError>;
+    type Item = Result<FilePlot, IoError>;
 
     fn next(&mut self) -> Option<Self::Item> {
         if self.done {
@@ -407,25 +417,25 @@ impl<R: std::io::Read> Iterator for PlotReader<R> {
     }
 }
 
-fn csv_error(path: &Path, e: csv::Error) -> CliError {
+fn csv_error(path: &Path, e: csv::Error) -> IoError {
     let line = e.position().map(csv::Position::line);
     let message = match e.kind() {
         csv::ErrorKind::UnequalLengths {
             expected_len, len, ..
         } => format!("malformed row: {len} fields where the header has {expected_len}"),
         csv::ErrorKind::Io(err) => {
-            return CliError::io(path, std::io::Error::new(err.kind(), err.to_string()));
+            return IoError::io(path, std::io::Error::new(err.kind(), err.to_string()));
         }
         _ => format!("malformed CSV: {e}"),
     };
-    CliError::input(path, line, None, message)
+    IoError::input(path, line, None, message)
 }
 
 /// Plot file text for simulated plots, in the layout of the first plot (polar,
 /// spherical, Cartesian 2-D or 3-D; plots of another layout are skipped and counted), the
-/// columns of [`Layout`]. Includes the `origin` column (`target:<id>` or `clutter`) —
+/// columns of `Layout`. Includes the `origin` column (`target:<id>` or `clutter`) —
 /// `argus track` ignores it.
-pub(crate) fn write_text(plots: &[LabelledPlot]) -> (String, usize) {
+pub fn write_text(plots: &[LabelledPlot]) -> (String, usize) {
     let layout = plots
         .first()
         .map_or(Layout::Polar, |p| Layout::of(p.plot.measurement()));
@@ -467,16 +477,16 @@ pub(crate) fn write_text(plots: &[LabelledPlot]) -> (String, usize) {
 mod tests {
     use super::*;
 
-    fn parse(text: &str) -> Result<Vec<FilePlot>, CliError> {
+    fn parse(text: &str) -> Result<Vec<FilePlot>, IoError> {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("p.csv");
         std::fs::write(&p, text).unwrap();
         read(&p)
     }
 
-    fn at(e: &CliError) -> (Option<u64>, Option<String>) {
+    fn at(e: &IoError) -> (Option<u64>, Option<String>) {
         match e {
-            CliError::Input { at, .. } => (at.line, at.field.clone()),
+            IoError::Input { at, .. } => (at.line, at.field.clone()),
             other => panic!("not an input error: {other}"),
         }
     }

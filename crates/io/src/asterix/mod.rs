@@ -8,17 +8,17 @@
 //! configuration: `sensor = 256 · SAC + SIC` (so sensor 1 is SAC 0, SIC 1). `argus track`
 //! matches a `[[sensor]]` by its `sac`, `sic` keys, or by that mapping of its `id`.
 
-pub(crate) mod adsb;
-pub(crate) mod encode;
-pub(crate) mod plots;
-pub(crate) mod tracks;
+pub mod adsb;
+pub mod encode;
+pub mod plots;
+pub mod tracks;
 
 use std::path::Path;
 
 use argus_asterix::{DataSource, Record, Skip};
 use argus_capture::Skipped;
 
-use crate::error::CliError;
+use crate::error::IoError;
 
 /// What a file holds, by content.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -58,28 +58,28 @@ impl Content {
 
 /// One decoded record and where it came from.
 #[derive(Debug, Clone)]
-pub(crate) struct Timed {
+pub struct Timed {
     /// The record.
-    pub(crate) record: Record,
+    pub record: Record,
     /// 1-based number among the file's decoded records (named in errors).
-    pub(crate) number: u64,
+    pub number: u64,
 }
 
 /// A file's ASTERIX records, and what was skipped on the way.
 #[derive(Debug, Clone, Default)]
-pub(crate) struct Surveillance {
+pub struct Surveillance {
     /// The records, in file order.
-    pub(crate) records: Vec<Timed>,
+    pub records: Vec<Timed>,
     /// Packets of a capture without a UDP payload.
-    pub(crate) packets_skipped: Vec<Skipped>,
+    pub packets_skipped: Vec<Skipped>,
     /// ASTERIX blocks or records skipped (datagram index, the skip).
-    pub(crate) asterix_skipped: Vec<(usize, Skip)>,
+    pub asterix_skipped: Vec<(usize, Skip)>,
 }
 
 impl Surveillance {
     /// One line telling what was skipped (`None` when nothing was): the counts and the
     /// first reason of each kind.
-    pub(crate) fn skipped_note(&self, path: &Path) -> Option<String> {
+    pub fn skipped_note(&self, path: &Path) -> Option<String> {
         if self.packets_skipped.is_empty() && self.asterix_skipped.is_empty() {
             return None;
         }
@@ -110,23 +110,23 @@ impl Surveillance {
 /// Reads `path` as ASTERIX when its content is a capture or block file (`None`: CSV).
 ///
 /// # Errors
-/// [`CliError::Io`]; [`CliError::Capture`] for a capture whose header or link type
+/// [`IoError::Io`]; [`IoError::Capture`] for a capture whose header or link type
 /// cannot be read.
-pub(crate) fn read(path: &Path) -> Result<Option<Surveillance>, CliError> {
+pub fn read(path: &Path) -> Result<Option<Surveillance>, IoError> {
     use std::io::Read as _;
     // The content is known from the first block at most (LEN ≤ 65 535): a CSV file is
     // not read further here, so that `argus track` still streams it.
-    let mut file = std::fs::File::open(path).map_err(|e| CliError::io(path, e))?;
+    let mut file = std::fs::File::open(path).map_err(|e| IoError::io(path, e))?;
     let mut head = Vec::new();
     (&mut file)
         .take(SNIFF_BYTES)
         .read_to_end(&mut head)
-        .map_err(|e| CliError::io(path, e))?;
+        .map_err(|e| IoError::io(path, e))?;
     if Content::sniff(&head) == Content::Csv {
         return Ok(None);
     }
     file.read_to_end(&mut head)
-        .map_err(|e| CliError::io(path, e))?;
+        .map_err(|e| IoError::io(path, e))?;
     read_bytes(&head, path)
 }
 
@@ -137,7 +137,7 @@ const SNIFF_BYTES: u64 = 65_536;
 ///
 /// # Errors
 /// As [`read`].
-pub(crate) fn read_bytes(bytes: &[u8], path: &Path) -> Result<Option<Surveillance>, CliError> {
+pub(crate) fn read_bytes(bytes: &[u8], path: &Path) -> Result<Option<Surveillance>, IoError> {
     let mut out = Surveillance::default();
     // The capture times are not used: I048/140 and I034/030 give each record's time.
     let push = |datagram: usize, payload: &[u8], out: &mut Surveillance| {
@@ -153,7 +153,7 @@ pub(crate) fn read_bytes(bytes: &[u8], path: &Path) -> Result<Option<Surveillanc
         Content::Csv => return Ok(None),
         Content::Blocks => push(0, bytes, &mut out),
         Content::Capture => {
-            let c = argus_capture::read(bytes).map_err(|source| CliError::Capture {
+            let c = argus_capture::read(bytes).map_err(|source| IoError::Capture {
                 file: path.to_path_buf(),
                 source,
             })?;
@@ -167,7 +167,7 @@ pub(crate) fn read_bytes(bytes: &[u8], path: &Path) -> Result<Option<Surveillanc
 }
 
 /// The sensor number of a data source without a configuration: `256 · SAC + SIC`.
-pub(crate) fn sensor_of(source: DataSource) -> u32 {
+pub fn sensor_of(source: DataSource) -> u32 {
     u32::from(source.sac) * 256 + u32::from(source.sic)
 }
 

@@ -1,22 +1,24 @@
-//! What `argus track` runs: the configuration file read once ([`super::schema`]), checked
-//! once ([`super::spec`]) and turned into a [`Job`]: one estimator over the whole file, or
+//! What `argus track` runs: the configuration file read once ([`crate::schema`]), checked
+//! once ([`crate::spec`]) and turned into a [`Job`]: one estimator over the whole file, or
 //! the multi-target tracker when the file has a `[tracker]` table.
 
 use std::path::Path;
 
-use super::geo::{self, Reference};
-use super::schema::{self, Source};
-use super::spec::{self, Estimator, Sensor};
-use super::tracker_config::{self, MultiTarget};
-use crate::error::CliError;
-use crate::plotfile::FilePlot;
+use crate::error::ConfigError;
+use crate::geo::{self, Reference};
+use crate::schema::{self, Source};
+use crate::spec::{self, Estimator, Sensor};
+use crate::tracker_config::{self, MultiTarget};
+use argus_sensors::Plot;
 
 /// A checked `argus track` job.
 #[derive(Debug, Clone)]
-pub(super) enum Job {
+pub enum Job {
     /// One target: `estimator` over every plot of the file, in order.
     Single {
+        /// The checked sensors.
         sensors: Vec<Sensor>,
+        /// The checked estimator.
         estimator: Estimator,
     },
     /// The multi-target tracker.
@@ -25,30 +27,23 @@ pub(super) enum Job {
 
 /// A checked job and the configuration's system reference point, if it has one.
 #[derive(Debug, Clone)]
-pub(super) struct Loaded {
-    pub(super) job: Job,
+pub struct Loaded {
+    /// The job.
+    pub job: Job,
     /// The checked sensors (for an ASTERIX plot file's SAC/SIC).
-    pub(super) sensors: Vec<Sensor>,
-    pub(super) reference: Option<Reference>,
+    pub sensors: Vec<Sensor>,
+    /// The `[reference]` point, when the file has one.
+    pub reference: Option<Reference>,
     /// `(sensor, γ)` of each geodetic site whose own north is not the reference
     /// frame's ([`Sensor::grid_rotation`]).
-    pub(super) grid_rotations: Vec<(u32, f64)>,
+    pub grid_rotations: Vec<(u32, f64)>,
 }
 
 impl Loaded {
-    /// `p` in the reference frame ([`geo::to_reference`]).
-    pub(super) fn to_reference(&self, p: FilePlot) -> FilePlot {
+    /// `p` in the reference frame ([`crate::to_reference`]).
+    pub fn to_reference(&self, p: Plot) -> Plot {
         geo::to_reference(&self.grid_rotations, p)
     }
-}
-
-/// Reads and checks the configuration at `path` ([`load_all`] without the reference).
-///
-/// # Errors
-/// As [`load_all`].
-#[cfg(test)]
-pub(super) fn load(path: &Path) -> Result<Job, CliError> {
-    load_all(path).map(|l| l.job)
 }
 
 /// Reads and checks the configuration at `path`. The reference point first (sensors may
@@ -56,9 +51,9 @@ pub(super) fn load(path: &Path) -> Result<Job, CliError> {
 /// the same rules for both jobs; then the `[tracker]` table.
 ///
 /// # Errors
-/// [`CliError::Input`] naming the file, the line and the field of the first bad value;
-/// [`CliError::Io`]; [`CliError::Motion`] for a model the motion-model crate refuses.
-pub(super) fn load_all(path: &Path) -> Result<Loaded, CliError> {
+/// [`ConfigError::Input`] naming the file, the line and the field of the first bad value;
+/// [`ConfigError::Io`]; [`ConfigError::Motion`] for a model the motion-model crate refuses.
+pub fn load(path: &Path) -> Result<Loaded, ConfigError> {
     let (text, file) = schema::read(path)?;
     let src = Source { path, text: &text };
     let reference = geo::reference(src, file.reference.as_ref())?;

@@ -1,7 +1,7 @@
 //! The multi-target job: the checked sensors and estimator and the `[tracker]` table
 //! mapped onto [`TrackerConfig`], whose [`TrackerConfig::validate`] is the one check of
 //! the tracker's values (its fields are mapped back to the file's keys by
-//! [`super::errors::config_error`]).
+//! [`crate::tracker_errors::config_error`]).
 
 use std::ops::Range;
 
@@ -11,36 +11,37 @@ use argus_tracker::{
 };
 use toml::Spanned;
 
-use super::errors::config_error;
-use super::schema::{EstimatorTable, File, ModelKind, Source, TrackerTable};
-use super::spec::{Estimator, Sensor};
-use crate::error::CliError;
+use crate::error::ConfigError;
+use crate::schema::{EstimatorTable, File, ModelKind, Source, TrackerTable};
+use crate::spec::{Estimator, Sensor};
+use crate::tracker_errors::config_error;
 
 /// `max_exact_events` when `association = "jpda"` does not give it (the default of
 /// `argus run surveillance`'s `jpda_max_events`).
-pub(super) const DEFAULT_MAX_EXACT_EVENTS: u32 = 1000;
+pub const DEFAULT_MAX_EXACT_EVENTS: u32 = 1000;
 
 /// A checked multi-target configuration.
 #[derive(Debug, Clone)]
-pub(super) struct MultiTarget {
-    pub(super) config: TrackerConfig,
+pub struct MultiTarget {
+    /// The tracker's configuration, validated.
+    pub config: TrackerConfig,
     /// `estimator.kind` as written.
-    pub(super) estimator: &'static str,
+    pub estimator: &'static str,
 }
 
 /// Maps `file`'s `[tracker]` table (`table`), the checked `sensors` and `estimator` onto
 /// the tracker's configuration and validates it.
 ///
 /// # Errors
-/// [`CliError::Input`] naming the file, the line and the field (`tracker.<key>`,
+/// [`ConfigError::Input`] naming the file, the line and the field (`tracker.<key>`,
 /// `estimator.<key>`, a `[[sensor]]` key) of the first bad value.
-pub(super) fn build(
+pub(crate) fn build(
     src: Source<'_>,
     file: &File,
     table: &Spanned<TrackerTable>,
     sensors: &[Sensor],
     estimator: &Estimator,
-) -> Result<MultiTarget, CliError> {
+) -> Result<MultiTarget, ConfigError> {
     let cx = Cx {
         src,
         table,
@@ -65,13 +66,18 @@ struct Cx<'a> {
 
 impl Cx<'_> {
     /// An error at `span`, or at the `[tracker]` line.
-    fn error(&self, span: Option<Range<usize>>, field: &str, msg: impl Into<String>) -> CliError {
+    fn error(
+        &self,
+        span: Option<Range<usize>>,
+        field: &str,
+        msg: impl Into<String>,
+    ) -> ConfigError {
         let at = span.unwrap_or_else(|| self.table.span());
-        CliError::input(self.src.path, Some(self.src.line(&at)), Some(field), msg)
+        ConfigError::input(self.src.path, Some(self.src.line(&at)), Some(field), msg)
     }
 
     /// A number (TOML integer or float).
-    fn number(&self, v: &Spanned<toml::Value>, field: &str) -> Result<f64, CliError> {
+    fn number(&self, v: &Spanned<toml::Value>, field: &str) -> Result<f64, ConfigError> {
         match v.get_ref() {
             toml::Value::Float(x) => Ok(*x),
             toml::Value::Integer(i) => Ok(*i as f64),
@@ -85,7 +91,7 @@ impl Cx<'_> {
         v: Option<&Spanned<toml::Value>>,
         field: &str,
         default: f64,
-    ) -> Result<f64, CliError> {
+    ) -> Result<f64, ConfigError> {
         v.map_or(Ok(default), |v| self.number(v, field))
     }
 
@@ -95,7 +101,7 @@ impl Cx<'_> {
         v: Option<&Spanned<toml::Value>>,
         field: &str,
         default: u32,
-    ) -> Result<u32, CliError> {
+    ) -> Result<u32, ConfigError> {
         let Some(v) = v else { return Ok(default) };
         match v.get_ref() {
             toml::Value::Integer(i) => u32::try_from(*i).map_err(|_| {
@@ -111,7 +117,11 @@ impl Cx<'_> {
 
     /// The tracker configuration as written (not yet validated); the library's defaults
     /// for every key not written.
-    fn config(&self, sensors: &[Sensor], estimator: &Estimator) -> Result<TrackerConfig, CliError> {
+    fn config(
+        &self,
+        sensors: &[Sensor],
+        estimator: &Estimator,
+    ) -> Result<TrackerConfig, ConfigError> {
         let t = self.table.get_ref();
         let mut c = TrackerConfig::new(sensors.iter().map(|s| SensorConfig {
             id: SensorId(s.id),
@@ -171,7 +181,7 @@ impl Cx<'_> {
     }
 
     /// `association` and its JPDA keys (which GNN refuses rather than ignores).
-    fn association(&self) -> Result<AssociationConfig, CliError> {
+    fn association(&self) -> Result<AssociationConfig, ConfigError> {
         let t = self.table.get_ref();
         let name = match &t.association {
             None => "gnn".to_owned(),
@@ -231,8 +241,12 @@ impl Cx<'_> {
     /// The per-track estimator: `kf-converted` is the tracker's KF, `ekf` its EKF, `imm`
     /// its two-mode CV IMM, `multi-imm` its multi-IMM around that IMM (five hypotheses on
     /// one common scale; grid spacing and clip as checked, defaults included, by
-    /// [`super::spec`]), `aircraft-imm` its aircraft IMM with the tuning checked there.
-    fn estimator_into(&self, c: &mut TrackerConfig, estimator: &Estimator) -> Result<(), CliError> {
+    /// [`crate::spec`]), `aircraft-imm` its aircraft IMM with the tuning checked there.
+    fn estimator_into(
+        &self,
+        c: &mut TrackerConfig,
+        estimator: &Estimator,
+    ) -> Result<(), ConfigError> {
         let e = self.estimator;
         c.estimator = match estimator {
             Estimator::KfConverted(sigma_a) => {
@@ -284,7 +298,7 @@ impl Cx<'_> {
     }
 
     /// The tracker's IMM: two CV models, a symmetric Markov matrix, uniform start.
-    fn imm_cv2(&self) -> Result<(f64, f64, f64), CliError> {
+    fn imm_cv2(&self) -> Result<(f64, f64, f64), ConfigError> {
         let e = self.estimator;
         let src = self.src;
         let models = e

@@ -9,9 +9,8 @@
 use argus_geo::{Enu, GeoError, Geodetic, LocalFrame, RadarSite};
 use toml::Spanned;
 
-use super::schema::{ReferenceTable, SensorTable, Source};
-use crate::error::CliError;
-use crate::plotfile::FilePlot;
+use crate::error::ConfigError;
+use crate::schema::{ReferenceTable, SensorTable, Source};
 use argus_sensors::{Measurement, Plot, PolarMeasurement, SphericalMeasurement, wrap_angle};
 
 /// How close (m) the height of a track's `lat, lon` point is brought to the reference's
@@ -21,7 +20,7 @@ const HEIGHT_TOL: f64 = 1e-6;
 
 /// The system reference point: the origin of the local East-North-Up plane.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Reference {
+pub struct Reference {
     frame: LocalFrame,
 }
 
@@ -34,7 +33,7 @@ impl Reference {
     ///
     /// # Errors
     /// [`GeoError::NonFinite`] for a non-finite coordinate.
-    pub(super) fn lat_lon(&self, east: f64, north: f64) -> Result<(f64, f64), GeoError> {
+    pub fn lat_lon(&self, east: f64, north: f64) -> Result<(f64, f64), GeoError> {
         let h0 = self.frame.origin().height();
         let mut up = 0.0;
         let mut g = self.frame.enu_to_geodetic(&Enu { east, north, up })?;
@@ -57,7 +56,7 @@ fn geodetic(
     lat: &Spanned<f64>,
     lon: &Spanned<f64>,
     alt: Option<&Spanned<f64>>,
-) -> Result<Geodetic, CliError> {
+) -> Result<Geodetic, ConfigError> {
     let h = alt.map_or(0.0, |a| *a.get_ref());
     Geodetic::from_degrees(*lat.get_ref(), *lon.get_ref(), h)
         .map_err(|e| src.at(lat, "latitude", format!("{what}: {e}")))
@@ -66,12 +65,12 @@ fn geodetic(
 /// Checks `[reference]`.
 ///
 /// # Errors
-/// [`CliError::Input`] at the latitude's line for a latitude outside [−90°, 90°] or a
+/// [`ConfigError::Input`] at the latitude's line for a latitude outside [−90°, 90°] or a
 /// non-finite value.
-pub(super) fn reference(
+pub(crate) fn reference(
     src: Source<'_>,
     table: Option<&Spanned<ReferenceTable>>,
-) -> Result<Option<Reference>, CliError> {
+) -> Result<Option<Reference>, ConfigError> {
     let Some(t) = table else { return Ok(None) };
     let t = t.get_ref();
     let origin = geodetic(
@@ -95,14 +94,14 @@ pub(super) fn reference(
 /// `position` is used and `γ = 0`).
 ///
 /// # Errors
-/// [`CliError::Input`] naming the line: geodetic keys together with `position`, a
+/// [`ConfigError::Input`] naming the line: geodetic keys together with `position`, a
 /// latitude without a longitude (or the reverse), geodetic keys without a `[reference]`,
 /// a bad latitude.
-pub(super) fn sensor_position(
+pub(crate) fn sensor_position(
     src: Source<'_>,
     s: &SensorTable,
     reference: Option<&Reference>,
-) -> Result<Option<([f64; 3], f64)>, CliError> {
+) -> Result<Option<([f64; 3], f64)>, ConfigError> {
     let id = *s.id.get_ref();
     let (lat, lon) = match (&s.latitude, &s.longitude) {
         (None, None) => {
@@ -152,10 +151,10 @@ pub(super) fn sensor_position(
 }
 
 /// `p` in the reference frame: the azimuth of a polar or spherical plot of a geodetic
-/// site turned by its `γ` (`rotations`: `(sensor, γ)`, [`sensor_position`]) and wrapped to
+/// site turned by its `γ` (`rotations`: `(sensor, γ)`, `sensor_position`) and wrapped to
 /// (−π, π]; every other plot as it is.
-pub(super) fn to_reference(rotations: &[(u32, f64)], mut p: FilePlot) -> FilePlot {
-    let Some(&(_, gamma)) = rotations.iter().find(|(id, _)| *id == p.sensor()) else {
+pub fn to_reference(rotations: &[(u32, f64)], p: Plot) -> Plot {
+    let Some(&(_, gamma)) = rotations.iter().find(|(id, _)| *id == p.sensor().0) else {
         return p;
     };
     let turned = match *p.measurement() {
@@ -169,26 +168,23 @@ pub(super) fn to_reference(rotations: &[(u32, f64)], mut p: FilePlot) -> FilePlo
         Measurement::Cartesian2(_) | Measurement::Cartesian3(_) => return p,
     };
     // The measurement was valid and only its (wrapped) azimuth changed.
-    let q = &p.plot;
-    if let Ok(plot) = turned
-        .and_then(|m| Plot::new(q.time(), q.sensor(), m))
-        .and_then(|plot| plot.with_amplitude(q.amplitude()))
-    {
-        p.plot = plot;
-    }
-    p
+    turned
+        .and_then(|m| Plot::new(p.time(), p.sensor(), m))
+        .and_then(|plot| plot.with_amplitude(p.amplitude()))
+        .unwrap_or(p)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::job::{Job, load_all};
+    use crate::error::ConfigError;
+    use crate::job::{Job, Loaded};
 
     /// Loads `text` as a configuration file.
-    fn load(text: &str) -> Result<super::super::job::Loaded, crate::error::CliError> {
+    fn load(text: &str) -> Result<Loaded, ConfigError> {
         let dir = tempfile::tempdir().unwrap();
         let p = dir.path().join("g.toml");
         std::fs::write(&p, text).unwrap();
-        load_all(&p)
+        crate::job::load(&p)
     }
 
     const EST: &str = "\n[estimator]\nkind = \"kf-converted\"\nsigma_a = 1.0\n";

@@ -9,8 +9,8 @@ use argus_tracker::{
 };
 use toml::Spanned;
 
-use super::schema::{File, ScoreTable, Source, TrackerTable};
-use crate::error::CliError;
+use crate::error::ConfigError;
+use crate::schema::{File, ScoreTable, Source, TrackerTable};
 
 /// The `[[sensor]]` key of a sensor field the tracker checks again (a missing polar
 /// noise is named by `sigma_range`; a field this map does not know by `id`).
@@ -40,19 +40,19 @@ enum Place {
 /// Maps a [`TrackerError::InvalidConfig`] of the tracker's validation, by its typed
 /// [`argus_tracker::ConfigField`], to the key of `file` that holds the value (the `[tracker]` line for a default); any other error names the
 /// `[tracker]` table.
-pub(super) fn config_error(
+pub(crate) fn config_error(
     src: Source<'_>,
     file: &File,
     table: &Spanned<TrackerTable>,
     e: &TrackerError,
-) -> CliError {
+) -> ConfigError {
     let TrackerError::InvalidConfig {
         field,
         value,
         reason,
     } = e
     else {
-        return CliError::input(src.path, None, Some("tracker"), e.to_string());
+        return ConfigError::input(src.path, None, Some("tracker"), e.to_string());
     };
     let t = table.get_ref();
     let est = &file.estimator;
@@ -171,7 +171,7 @@ pub(super) fn config_error(
                 format!("{value}: {reason}")
             };
             let at = at.unwrap_or_else(|| table.span());
-            CliError::input(src.path, Some(src.line(&at)), Some(key), msg)
+            ConfigError::input(src.path, Some(src.line(&at)), Some(key), msg)
         }
         Place::Sensor(f) => sensor_error(src, file, f, *value, reason),
         Place::NoSensor => src.missing("sensor", "the tracker needs at least one [[sensor]]"),
@@ -187,7 +187,7 @@ fn sensor_error(
     field: SensorField,
     value: f64,
     reason: &str,
-) -> CliError {
+) -> ConfigError {
     let same = |v: f64| v.to_bits() == value.to_bits();
     let found = file.sensors.iter().find_map(|s| {
         let id = *s.id.get_ref();
@@ -224,7 +224,7 @@ fn sensor_error(
     });
     let key = sensor_key(field);
     match found {
-        Some((id, span)) => CliError::input(
+        Some((id, span)) => ConfigError::input(
             src.path,
             Some(src.line(&span)),
             Some(key),

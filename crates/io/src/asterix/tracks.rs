@@ -9,7 +9,7 @@ use argus_asterix::{Cartesian062, Cat062, DataSource, ItemId, Record, TimeOfDay,
 use super::Surveillance;
 use super::encode::Encoded;
 use super::plots::{Clock, DAY};
-use crate::error::CliError;
+use crate::error::IoError;
 
 /// Reports per CAT062 block (one block per datagram): 64 of 20 bytes.
 const RECORDS_PER_BLOCK: usize = 64;
@@ -18,7 +18,7 @@ const RECORDS_PER_BLOCK: usize = 64;
 /// time, a track number, a Cartesian position and a velocity (every row `confirmed`:
 /// CAT062 tracks are the system's output), in file order; and how many records had not
 /// all four.
-pub(crate) fn tracks_csv(s: &Surveillance) -> (String, usize, usize) {
+pub fn tracks_csv(s: &Surveillance) -> (String, usize, usize) {
     let mut clock = Clock::default();
     let mut text = String::from("t,track,x,vx,y,vy,status\n");
     let (mut rows, mut incomplete) = (0, 0);
@@ -55,14 +55,14 @@ fn quantise(what: &str, v: f64, lsb: f64, max: f64) -> Result<i32, String> {
 /// /100 x, y (0.5 m), /185 vx, vy (0.25 m/s).
 ///
 /// # Errors
-/// [`CliError::Score`] for a tracks CSV `argus score` would refuse; [`CliError::Usage`]
+/// [`IoError::Score`] for a tracks CSV `argus score` would refuse; [`IoError::Encode`]
 /// for a track name that is not a number 0–65 535 or a value CAT062 cannot hold.
-pub(crate) fn encode_tracks(path: &Path, source: DataSource) -> Result<Encoded, CliError> {
+pub fn encode_tracks(path: &Path, source: DataSource) -> Result<Encoded, IoError> {
     let histories = argus_score::read_tracks(path)?;
     let mut rows = Vec::new();
     for h in &histories {
         let number: u16 = h.name().parse().map_err(|_| {
-            CliError::Usage(format!(
+            IoError::Encode(format!(
                 "{}: track '{}' is not a CAT062 track number (0–65 535)",
                 path.display(),
                 h.name()
@@ -81,7 +81,7 @@ pub(crate) fn encode_tracks(path: &Path, source: DataSource) -> Result<Encoded, 
         name: "070",
     };
     let bad = |n: u16, t: f64, e: String| {
-        CliError::Usage(format!("{}: track {n} at t = {t} s: {e}", path.display()))
+        IoError::Encode(format!("{}: track {n} at t = {t} s: {e}", path.display()))
     };
     let mut records = Vec::with_capacity(rows.len());
     for (n, r) in &rows {
@@ -120,7 +120,7 @@ pub(crate) fn encode_tracks(path: &Path, source: DataSource) -> Result<Encoded, 
         let block: Vec<Cat062> = chunk.iter().map(|(_, c)| *c).collect();
         let mut bytes = Vec::new();
         argus_asterix::encode_block(&block, &mut bytes)
-            .map_err(|e| CliError::Usage(format!("CAT062 block: {e}")))?;
+            .map_err(|e| IoError::Encode(format!("CAT062 block: {e}")))?;
         out.reports += block.len();
         out.datagrams.push((chunk[chunk.len() - 1].0, bytes));
     }

@@ -1,28 +1,32 @@
 //! Tests of the pipeline from the configuration's text: what each key becomes, and that
 //! every bad value names its file:line: field.
 
-use std::path::Path;
-
 use argus_tracker::{AssociationConfig, EstimatorConfig, SensorId, TrackerConfig};
 
-use super::job::{Job, load};
-use super::spec::{Estimator, MultiSpec, Sensor};
-use super::tracker_config::{DEFAULT_MAX_EXACT_EVENTS, MultiTarget};
-use crate::error::CliError;
+use crate::error::ConfigError;
+use crate::job::{Job, load};
+use crate::spec::{Estimator, MultiSpec, Sensor};
+use crate::tracker_config::{DEFAULT_MAX_EXACT_EVENTS, MultiTarget};
 
 /// Loads a configuration written to a temporary file `f.toml` (for the tests of this
 /// module tree).
-fn load_text(text: &str) -> Result<Job, CliError> {
-    let dir = tempfile::tempdir().map_err(|e| CliError::io(Path::new("tmp"), e))?;
+fn load_text(text: &str) -> Result<Job, ConfigError> {
+    let dir = tempfile::tempdir().map_err(|e| ConfigError::Io {
+        path: "tmp".into(),
+        source: e,
+    })?;
     let p = dir.path().join("f.toml");
-    std::fs::write(&p, text).map_err(|e| CliError::io(&p, e))?;
-    load(&p)
+    std::fs::write(&p, text).map_err(|e| ConfigError::Io {
+        path: p.clone(),
+        source: e,
+    })?;
+    load(&p).map(|l| l.job)
 }
 
 /// The line and field of an input error (a test failure for any other error).
-fn at(e: &CliError) -> (Option<u64>, Option<String>) {
+fn at(e: &ConfigError) -> (Option<u64>, Option<String>) {
     match e {
-        CliError::Input { at, .. } => (at.line, at.field.clone()),
+        ConfigError::Input { at, .. } => (at.line, at.field.clone()),
         other => (None, Some(format!("not an input error: {other}"))),
     }
 }

@@ -1,7 +1,7 @@
 //! The checked `[[sensor]]` and `[estimator]` tables: [`Sensor`]s and an [`Estimator`]
 //! with every default filled in (here, once). Both jobs start from these: the
 //! single-target estimators use them as they are, the tracker maps them onto its own
-//! configuration ([`super::tracker_config`]).
+//! configuration ([`crate::tracker_config`]).
 
 use argus_asterix::DataSource;
 use argus_imm::{AircraftTuning, Augmentation, PROBABILITY_SUM_TOL};
@@ -9,78 +9,84 @@ use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use argus_tracker::{Rotation, RotationDirection};
 use toml::Spanned;
 
-use super::geo::{self, Reference};
-use super::schema::{
+use crate::error::ConfigError;
+use crate::geo::{self, Reference};
+use crate::schema::{
     EstimatorKind, EstimatorTable, Mixing, ModelKind, RotationKind, SensorTable, Source,
 };
-use crate::error::CliError;
 
 /// A checked sensor.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Sensor {
-    pub(super) id: u32,
+pub struct Sensor {
+    /// Its number (the plot file's `sensor` column).
+    pub id: u32,
     /// `[x, y, z]` (z = 0 when the config gives two coordinates).
-    pub(super) position: [f64; 3],
+    pub position: [f64; 3],
     /// Range σ (m), azimuth σ (rad).
-    pub(super) polar: Option<(f64, f64)>,
+    pub polar: Option<(f64, f64)>,
     /// Elevation σ (rad).
-    pub(super) sigma_elevation: Option<f64>,
+    pub sigma_elevation: Option<f64>,
     /// A rotating radar's beam (used by the multi-target tracker, whose configuration
     /// checks its values; the single-target estimators take each plot at its time), in
     /// the reference frame: a geodetic site's `north_time` is moved by `γ` (below).
-    pub(super) rotation: Option<Rotation>,
+    pub rotation: Option<Rotation>,
     /// Its ASTERIX data source (`sac`, `sic`; default `256 · SAC + SIC = id`).
-    pub(super) asterix: Option<argus_asterix::DataSource>,
+    pub asterix: Option<argus_asterix::DataSource>,
     /// `γ` (rad): a geodetic site's own east axis from the reference frame's, by which
-    /// its plots' azimuths are turned ([`super::geo::sensor_position`]); 0 for a sensor
+    /// its plots' azimuths are turned (`geo::sensor_position`); 0 for a sensor
     /// given by `position`.
-    pub(super) grid_rotation: f64,
+    pub grid_rotation: f64,
 }
 
 /// A checked estimator: its kind and the CV model's white-acceleration σ (m/s²), or the
 /// IMM (and multi-IMM) description. The KF and EKF are built for the plot file's
 /// dimension (2-D or 3-D CV); the IMMs are 2-D.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) enum Estimator {
+pub enum Estimator {
+    /// `kf-converted`: the KF on converted plots, with its σ_a.
     KfConverted(f64),
+    /// `ekf`: the EKF on polar plots, with its σ_a.
     Ekf(f64),
+    /// `imm`: the IMM of CV / fixed-rate CT Kalman filters.
     Imm(ImmSpec),
+    /// `multi-imm`: the multi-IMM around that IMM.
     MultiImm(ImmSpec, MultiSpec),
+    /// `aircraft-imm`: the aircraft IMM's tuning.
     Aircraft(AircraftTuning<2, 3>),
 }
 
 /// The largest number of motion models an `argus track` IMM may have (the mode count is a
 /// compile-time size; 1 … 5 are built).
-pub(super) const MAX_MODELS: usize = 5;
+pub const MAX_MODELS: usize = 5;
 
 /// A checked IMM description: one planar motion model per mode, the Markov matrix (rows
 /// of `models.len()` entries) and the initial mode probabilities.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct ImmSpec {
+pub struct ImmSpec {
     /// The mode-matched models (CV or fixed-rate CT), each in a Kalman filter.
-    pub(super) models: Vec<PlanarModel>,
+    pub models: Vec<PlanarModel>,
     /// `π_ij`, row by row.
-    pub(super) markov: Vec<Vec<f64>>,
+    pub markov: Vec<Vec<f64>>,
     /// `μ₀`.
-    pub(super) initial: Vec<f64>,
+    pub initial: Vec<f64>,
 }
 
 /// The multi-IMM's parameters (seed 000 eqs (12)–(14), generalised).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct MultiSpec {
+pub struct MultiSpec {
     /// Hypotheses per axis (`n` IMMs with one common scale, `n²` with `per_axis`).
-    pub(super) n: usize,
+    pub n: usize,
     /// Grid spacing `p`.
-    pub(super) p: f64,
+    pub p: f64,
     /// Per-step clip of the reference's relative change (`None`: unclipped).
-    pub(super) clip: Option<f64>,
+    pub clip: Option<f64>,
     /// Range and azimuth variances on an independent `n × n` grid.
-    pub(super) per_axis: bool,
+    pub per_axis: bool,
 }
 
 impl MultiSpec {
     /// The defaults: the paper's five hypotheses on one scale, `p = 0.1`, ±5 % clip.
-    pub(super) const DEFAULT: Self = Self {
+    pub const DEFAULT: Self = Self {
         n: 5,
         p: 0.1,
         clip: Some(0.05),
@@ -88,7 +94,7 @@ impl MultiSpec {
     };
 }
 
-fn non_negative(src: Source<'_>, field: &str, v: &Spanned<f64>) -> Result<f64, CliError> {
+fn non_negative(src: Source<'_>, field: &str, v: &Spanned<f64>) -> Result<f64, ConfigError> {
     let x = *v.get_ref();
     if x.is_finite() && x >= 0.0 {
         Ok(x)
@@ -104,12 +110,12 @@ fn non_negative(src: Source<'_>, field: &str, v: &Spanned<f64>) -> Result<f64, C
 /// Checks the `[[sensor]]` tables: 2 or 3 finite coordinates, σ non-negative, ids distinct.
 ///
 /// # Errors
-/// [`CliError::Input`] at the bad value.
-pub(super) fn sensors(
+/// [`ConfigError::Input`] at the bad value.
+pub(crate) fn sensors(
     src: Source<'_>,
     tables: &[SensorTable],
     reference: Option<&Reference>,
-) -> Result<Vec<Sensor>, CliError> {
+) -> Result<Vec<Sensor>, ConfigError> {
     let mut sensors: Vec<Sensor> = Vec::with_capacity(tables.len());
     for s in tables {
         let id = *s.id.get_ref();
@@ -159,8 +165,12 @@ pub(super) fn sensors(
 /// A `[[sensor]]`'s `sac` and `sic`: both or neither.
 ///
 /// # Errors
-/// [`CliError::Input`] at the one given without the other.
-fn data_source(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<DataSource>, CliError> {
+/// [`ConfigError::Input`] at the one given without the other.
+fn data_source(
+    src: Source<'_>,
+    id: u32,
+    s: &SensorTable,
+) -> Result<Option<DataSource>, ConfigError> {
     match (&s.sac, &s.sic) {
         (Some(sac), Some(sic)) => Ok(Some(DataSource {
             sac: *sac.get_ref(),
@@ -173,7 +183,7 @@ fn data_source(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<DataS
 }
 
 /// A sensor's `position = [x, y]` or `[x, y, z]` (z = 0 when omitted), finite.
-fn xy_position(src: Source<'_>, id: u32, p: &Spanned<Vec<f64>>) -> Result<[f64; 3], CliError> {
+fn xy_position(src: Source<'_>, id: u32, p: &Spanned<Vec<f64>>) -> Result<[f64; 3], ConfigError> {
     let pos = p.get_ref();
     let position = match pos.as_slice() {
         [x, y] => [*x, *y, 0.0],
@@ -201,7 +211,7 @@ fn xy_position(src: Source<'_>, id: u32, p: &Spanned<Vec<f64>>) -> Result<[f64; 
 
 /// A sensor's `revolution_period`, `rotation` (default clockwise) and `north_time`
 /// (default 0): the last two need the first.
-fn rotation(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<Rotation>, CliError> {
+fn rotation(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<Rotation>, ConfigError> {
     let Some(period) = &s.revolution_period else {
         if let Some(r) = &s.rotation {
             return Err(src.at(
@@ -234,7 +244,7 @@ fn rotation(src: Source<'_>, id: u32, s: &SensorTable) -> Result<Option<Rotation
 /// the site's north, the reference frame's azimuth `π/2 + γ`, at `north_time`, so in the
 /// reference frame it points at `π/2` when it has turned by `−γ` more (clockwise: at
 /// `north_time + γ P / 2π`; counter-clockwise: `north_time − γ P / 2π`).
-pub(super) fn turned(r: Rotation, gamma: f64) -> Rotation {
+pub fn turned(r: Rotation, gamma: f64) -> Rotation {
     let shift = gamma * r.period / std::f64::consts::TAU;
     let north_time = match r.direction {
         RotationDirection::Clockwise => r.north_time + shift,
@@ -246,9 +256,9 @@ pub(super) fn turned(r: Rotation, gamma: f64) -> Rotation {
 /// Checks `[estimator]` and fills in its defaults.
 ///
 /// # Errors
-/// [`CliError::Input`] at the bad value, or naming the missing key;
-/// [`CliError::Motion`] for a model the motion-model crate refuses.
-pub(super) fn estimator(src: Source<'_>, e: &EstimatorTable) -> Result<Estimator, CliError> {
+/// [`ConfigError::Input`] at the bad value, or naming the missing key;
+/// [`ConfigError::Motion`] for a model the motion-model crate refuses.
+pub(crate) fn estimator(src: Source<'_>, e: &EstimatorTable) -> Result<Estimator, ConfigError> {
     let kind = *e.kind.get_ref();
     let sigma_a = || {
         let sa = e
@@ -267,13 +277,13 @@ pub(super) fn estimator(src: Source<'_>, e: &EstimatorTable) -> Result<Estimator
 }
 
 /// A key that `kind` needs is not written.
-fn missing(src: Source<'_>, kind: EstimatorKind, key: &str) -> CliError {
+fn missing(src: Source<'_>, kind: EstimatorKind, key: &str) -> ConfigError {
     src.missing(key, format!("required by estimator kind {kind:?}"))
 }
 
 /// Checks the Markov matrix: square, one row per model, entries in [0, 1], rows summing
 /// to 1 within 1e-9.
-fn check_markov(src: Source<'_>, m: &Spanned<Vec<Vec<f64>>>, n: usize) -> Result<(), CliError> {
+fn check_markov(src: Source<'_>, m: &Spanned<Vec<Vec<f64>>>, n: usize) -> Result<(), ConfigError> {
     let rows = m.get_ref();
     if rows.len() != n || rows.iter().any(|r| r.len() != n) {
         return Err(src.at(
@@ -302,8 +312,8 @@ fn check_markov(src: Source<'_>, m: &Spanned<Vec<Vec<f64>>>, n: usize) -> Result
 fn model(
     src: Source<'_>,
     kind: EstimatorKind,
-    m: &super::schema::ModelTable,
-) -> Result<PlanarModel, CliError> {
+    m: &crate::schema::ModelTable,
+) -> Result<PlanarModel, ConfigError> {
     let sa = non_negative(src, "sigma_a", &m.sigma_a)?;
     Ok(match (m.kind, &m.rate_deg) {
         (ModelKind::Ct, Some(w)) => {
@@ -329,7 +339,7 @@ fn model(
 
 /// Checks the IMM keys (`models`, `markov`, `initial`, default: uniform) and builds the
 /// motion models.
-fn imm_spec(src: Source<'_>, e: &EstimatorTable) -> Result<ImmSpec, CliError> {
+fn imm_spec(src: Source<'_>, e: &EstimatorTable) -> Result<ImmSpec, ConfigError> {
     let kind = *e.kind.get_ref();
     let models = e
         .models
@@ -368,7 +378,7 @@ fn check_initial<'v>(
     src: Source<'_>,
     v: &'v Spanned<Vec<f64>>,
     n: usize,
-) -> Result<&'v [f64], CliError> {
+) -> Result<&'v [f64], ConfigError> {
     let mu = v.get_ref();
     let sum: f64 = mu.iter().sum();
     if mu.len() != n
@@ -385,7 +395,12 @@ fn check_initial<'v>(
 }
 
 /// A standard deviation that must be finite and positive (`to_rad`: given in degrees).
-fn positive(src: Source<'_>, field: &str, v: &Spanned<f64>, to_rad: bool) -> Result<f64, CliError> {
+fn positive(
+    src: Source<'_>,
+    field: &str,
+    v: &Spanned<f64>,
+    to_rad: bool,
+) -> Result<f64, ConfigError> {
     let x = *v.get_ref();
     if x.is_finite() && x > 0.0 {
         Ok(if to_rad { x.to_radians() } else { x })
@@ -396,13 +411,13 @@ fn positive(src: Source<'_>, field: &str, v: &Spanned<f64>, to_rad: bool) -> Res
 
 /// Checks the aircraft IMM's keys over `AircraftTuning::<2, 3>::default()`: every key is
 /// optional and replaces its default (degrees in the file, radians in the tuning).
-fn aircraft(src: Source<'_>, e: &EstimatorTable) -> Result<AircraftTuning<2, 3>, CliError> {
+fn aircraft(src: Source<'_>, e: &EstimatorTable) -> Result<AircraftTuning<2, 3>, ConfigError> {
     for (v, key) in [
         (e.sigma_a.as_ref().map(Spanned::span), "sigma_a"),
         (e.models.as_ref().map(Spanned::span), "models"),
     ] {
         if let Some(span) = v {
-            return Err(CliError::input(
+            return Err(ConfigError::input(
                 src.path,
                 Some(src.line(&span)),
                 Some(key),
@@ -470,7 +485,7 @@ fn aircraft(src: Source<'_>, e: &EstimatorTable) -> Result<AircraftTuning<2, 3>,
 
 /// Checks the multi-IMM keys `n`, `p`, `clip`, `per_axis` (defaults:
 /// [`MultiSpec::DEFAULT`]).
-fn multi_spec(src: Source<'_>, e: &EstimatorTable) -> Result<MultiSpec, CliError> {
+fn multi_spec(src: Source<'_>, e: &EstimatorTable) -> Result<MultiSpec, ConfigError> {
     let d = MultiSpec::DEFAULT;
     let per_axis = e.per_axis.as_ref().map_or(d.per_axis, |v| *v.get_ref());
     let allowed: &[usize] = if per_axis { &[3, 5] } else { &[3, 5, 7, 9] };
