@@ -215,7 +215,7 @@ pub use config::{
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
 pub use rotation::{Rotation, RotationDirection};
-pub use state::{MULTI_IMM_HYPOTHESES, ModeProbabilities};
+pub use state::{EstimatorState, MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};
 pub use two_mode::{TwoModeImm, two_mode_imm};

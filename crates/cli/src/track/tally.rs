@@ -105,12 +105,13 @@ pub(super) fn row(
         return;
     }
     let reason = track.deletion().map_or("", reason_name);
-    let mu = track.mode_probabilities();
+    let state = track.state();
+    let mu = state.mode_probabilities();
     let p = Point::new(track.time(), track.estimate())
         .of_track(sensor.0, track.id().0, status_name(track.status()), reason)
         .modes(mu.as_ref().map(|m| m.as_slice()))
-        .noise(track.noise_estimate())
-        .turn_rate(track.turn_rate())
+        .noise(state.noise_estimate())
+        .turn_rate(state.turn_rate())
         .score(track.score());
     out.push(&p);
 }

@@ -27,6 +27,8 @@ pub(crate) struct SectorState {
     /// The open sector's plots so far, and their times.
     points: Vec<crate::plot::ScanPoint>,
     times: Vec<f64>,
+    /// The open sector's plots as given (parallel to `points`).
+    plots: Vec<Plot>,
 }
 
 /// A track's part in one sector.
@@ -55,6 +57,7 @@ impl SectorState {
                     index: None,
                     points: Vec::new(),
                     times: Vec::new(),
+                    plots: Vec::new(),
                 })
             })
             .collect()
@@ -143,6 +146,7 @@ impl Tracker {
             let p = self.sensors[s].point(start + n, plot, cartesian_ok)?;
             self.sectors[i].points.push(p);
             self.sectors[i].times.push(t);
+            self.sectors[i].plots.push(*plot);
         }
         self.latest = Some(self.latest.map_or(t, |l| l.max(t)));
         Ok(())
@@ -242,8 +246,10 @@ impl Tracker {
         let ss = &mut self.sectors[i];
         std::mem::swap(&mut self.points, &mut ss.points);
         std::mem::swap(&mut self.point_times, &mut ss.times);
+        std::mem::swap(&mut self.point_plots, &mut ss.plots);
         ss.points.clear();
         ss.times.clear();
+        ss.plots.clear();
         let (s, rot) = (ss.sensor, ss.rotation);
         self.scan_sensor = s;
         let sensor = self.sensors[s];
@@ -327,10 +333,12 @@ impl Tracker {
             };
             let Some(pred) = self.predicted[k].take() else {
                 track.delete(DeletionReason::FilterFailure);
+                track.plot = None;
                 report.deleted.push(track.id);
                 continue;
             };
             let hit = self.assigned[k];
+            let plot = hit.map(|j| self.point_plots[j]);
             let weights = &self.jpda[k];
             if hit.is_none() && weights.is_empty() && !closes {
                 // Carried: the state is as it was before the look prediction.
@@ -386,7 +394,7 @@ impl Tracker {
                 track,
                 &mut report,
                 posterior,
-                hit.is_some(),
+                plot,
                 self.jpda_dl[k],
                 time,
             ) {
