@@ -199,6 +199,7 @@ mod management;
 mod pda;
 mod plot;
 mod rotation;
+mod session;
 mod state;
 mod track;
 mod tracker;
@@ -215,6 +216,7 @@ pub use config::{
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
 pub use rotation::{Rotation, RotationDirection};
+pub use session::{Concluded, Input, Output, Session, SessionError, TrackEvent, TrackSnapshot};
 pub use state::{EstimatorState, MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};

@@ -100,6 +100,54 @@ impl Tracker {
             .position(|ss| self.sensors[ss.sensor].id == id)
     }
 
+    /// Makes sensor `id` a rotating radar with `rotation` (or replaces its rotation), as if
+    /// the configuration had said so; the other sensors' sectors are kept as they are.
+    /// Only before the sensor's first plot: the caller ([`crate::Session`]) checks that
+    /// for a sensor configured synchronous, this refuses a rotating sensor whose sectors
+    /// have started.
+    ///
+    /// # Errors
+    /// [`TrackerError::LateRotation`] for an unknown sensor or a started one;
+    /// [`TrackerError::InvalidConfig`] for a bad rotation or one the estimator cannot take
+    /// (the multi-IMM). The tracker is then unchanged.
+    pub(crate) fn set_rotation(
+        &mut self,
+        id: SensorId,
+        rotation: Rotation,
+    ) -> Result<(), TrackerError> {
+        let Some(s) = self.sensors.iter().position(|m| m.id == id) else {
+            return Err(TrackerError::LateRotation {
+                sensor: id,
+                reason: "the configuration has no such sensor",
+            });
+        };
+        if self
+            .sectors
+            .iter()
+            .any(|ss| ss.sensor == s && ss.index.is_some())
+        {
+            return Err(TrackerError::LateRotation {
+                sensor: id,
+                reason: "the sensor's sectors have started (its first plot was taken)",
+            });
+        }
+        let mut config = self.config.clone();
+        config.sensors[s].rotation = Some(rotation);
+        config.validate()?;
+        self.config = config;
+        let mut old = std::mem::take(&mut self.sectors);
+        self.sectors = SectorState::for_config(&self.config)
+            .into_iter()
+            .map(
+                |fresh| match old.iter().position(|ss| ss.sensor == fresh.sensor) {
+                    Some(k) if fresh.sensor != s => old.swap_remove(k),
+                    _ => fresh,
+                },
+            )
+            .collect();
+        Ok(())
+    }
+
     /// Refuses a synchronous scan of a rotating sensor, or one that would come after a
     /// sector end not yet processed.
     pub(super) fn check_synchronous(&self, time: f64, s: usize) -> Result<(), TrackerError> {
