@@ -10,7 +10,6 @@
 //! multi-target tracker ([`multi`]); both write their rows through [`rows`].
 
 mod errors;
-mod feed;
 mod geo;
 mod job;
 mod mode_record;

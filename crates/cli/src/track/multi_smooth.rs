@@ -77,7 +77,7 @@ use argus_imm::{
 use argus_motion_models::Cv2D;
 use argus_tracker::{
     DeletionReason, EstimatorConfig, EstimatorState, MULTI_IMM_HYPOTHESES, ModeProbabilities,
-    SensorId, Track, TrackStatus, TrackerConfig, TwoModeImm, two_mode_imm,
+    SensorId, TrackSnapshot, TrackStatus, TrackerConfig, TwoModeImm, two_mode_imm,
 };
 
 use super::mode_record::ModeRecorder;
@@ -174,31 +174,30 @@ impl Recorded {
     }
 
     /// Keeps the row of `track` from the scan of `sensor`.
-    pub(super) fn push(&mut self, sensor: SensorId, track: &Track) {
-        let state = track.state();
+    pub(super) fn push(&mut self, sensor: SensorId, track: TrackSnapshot) {
+        let modes = track.mode_probabilities();
+        let noise = track.noise_estimate();
+        let turn_rate = track.turn_rate();
+        let (imm, multi, aircraft) = match track.state {
+            EstimatorState::Plain => (None, None, None),
+            EstimatorState::Imm(imm) => (Some(imm), None, None),
+            EstimatorState::MultiImm(m) => (None, Some(m), None),
+            EstimatorState::Aircraft(a) => (None, None, Some(a)),
+        };
         self.rows.push(Row {
             sensor: sensor.0,
-            track: track.id().0,
-            status: track.status(),
-            reason: track.deletion(),
-            time: track.time(),
-            estimate: *track.estimate(),
-            modes: state.mode_probabilities(),
-            noise: state.noise_estimate(),
-            score: track.score(),
-            imm: match state {
-                EstimatorState::Imm(imm) => Some(*imm),
-                _ => None,
-            },
-            multi: match state {
-                EstimatorState::MultiImm(m) => Some(m.clone()),
-                _ => None,
-            },
-            aircraft: match state {
-                EstimatorState::Aircraft(a) => Some(a.clone()),
-                _ => None,
-            },
-            turn_rate: state.turn_rate(),
+            track: track.id.0,
+            status: track.status,
+            reason: track.deletion,
+            time: track.time,
+            estimate: track.estimate,
+            modes,
+            noise,
+            score: track.score,
+            imm,
+            multi,
+            aircraft,
+            turn_rate,
         });
     }
 
