@@ -179,7 +179,7 @@
 //! let mut session = Session::new(TrackerConfig::new(vec![SensorId(0)]))?;
 //! let r = Matrix::<2, 2>::identity() * 900.0;
 //! let mut out = Vec::new();
-//! for k in 0..4 {
+//! for k in 0..4_u32 {
 //!     let t = 5.0 * f64::from(k);
 //!     let plot = Plot::cartesian(t, SensorId(0), Vector::<2>::new(200.0 * t, 0.0), r)?;
 //!     session.push(Input::Plot { plot, tag: 100 + u64::from(k) }, &mut out)?;
