@@ -93,7 +93,7 @@ fn direct(config: &TrackerConfig, plots: &[Plot], markers: &[f64]) -> Vec<(ScanR
         let (t, s) = (plots[start].time(), plots[start].sensor());
         let len = plots[start..]
             .iter()
-            .take_while(|p| p.sensor() == s && p.time() == t)
+            .take_while(|p| p.sensor() == s && p.time().total_cmp(&t).is_eq())
             .count();
         let group = &plots[start..start + len];
         // Markers before the group's first plot (the CLI pushes those first).
