@@ -212,7 +212,7 @@ pub enum EstimatorConfig {
     /// (eq 14, [`argus_imm::NoiseGrid::common`]); each polar plot updates all of them
     /// and moves the track's reference `σ²_ref` (eq 13), which starts at the configured
     /// polar noise of the sensor of its initiating plot and is read by
-    /// [`crate::Track::noise_estimate`]. Every sensor must have polar noise and every plot
+    /// [`crate::EstimatorState::noise_estimate`]. Every sensor must have polar noise and every plot
     /// must be polar; all sensors feeding a track share its one estimate. Gating and
     /// initiation use the plot converted with the configured noise; GNN only.
     MultiImm {

@@ -155,6 +155,15 @@ pub enum TrackerError {
         /// What to do instead.
         reason: &'static str,
     },
+    /// A rotation given for a sensor after its first plot (or for a sensor the
+    /// configuration does not list); see [`crate::Session`].
+    #[error("rotation of sensor {sensor:?} refused: {reason}")]
+    LateRotation {
+        /// The sensor.
+        sensor: SensorId,
+        /// Why it is refused.
+        reason: &'static str,
+    },
     /// The motion model rejected its parameters.
     #[error(transparent)]
     Motion(#[from] MotionError),

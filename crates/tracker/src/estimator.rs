@@ -1,6 +1,6 @@
 //! The per-track estimator: one variant per kind, each holding its filters, and what
 //! prediction, gating, update and initiation do for each. A new estimator is a variant
-//! here, one of [`TrackState`], and one arm in each `match` below.
+//! here, one of [`EstimatorState`], and one arm in each `match` below.
 
 use argus_core_math::{Gaussian, Vector};
 use argus_filters::{Ekf, GaussianFilter, Kf, MeasurementPrediction};
@@ -17,7 +17,7 @@ use crate::field::{ConfigField, EstimatorField};
 use crate::innovation::{gate_box, imm_gate_box, imm_innovation, innovation, polar_half};
 use crate::pda::{imm_jpda_update, jpda_update};
 use crate::plot::{CartesianPlots, PolarModel, ScanPoint};
-use crate::state::{MULTI_IMM_HYPOTHESES, MultiState, TrackState};
+use crate::state::{EstimatorState, MULTI_IMM_HYPOTHESES, MultiState};
 use crate::{EstimatorConfig, TrackerConfig, TrackerError, TwoModeImm, two_mode_imm};
 
 /// The filters of the configured estimator, built once.
@@ -173,23 +173,23 @@ impl Estimator {
         &self,
         estimate: Gaussian<4>,
         reference: Option<NoiseVariances>,
-    ) -> Option<TrackState> {
+    ) -> Option<EstimatorState> {
         match self {
-            Self::Kf(_) | Self::Ekf { .. } => Some(TrackState::Single),
+            Self::Kf(_) | Self::Ekf { .. } => Some(EstimatorState::Plain),
             Self::Imm(_) => ImmEstimate::from_common(estimate, [0.5, 0.5])
                 .ok()
-                .map(TrackState::Imm),
+                .map(EstimatorState::Imm),
             Self::MultiImm(_) => {
                 let start = ImmEstimate::from_common(estimate, [0.5, 0.5]).ok()?;
                 let reference = reference?;
-                Some(TrackState::Multi(Box::new(MultiImmEstimate::new(
+                Some(EstimatorState::MultiImm(Box::new(MultiImmEstimate::new(
                     start, reference,
                 ))))
             }
             Self::Aircraft { tuning, .. } => tuning
                 .start_from_cv(&estimate)
                 .ok()
-                .map(|a| TrackState::Aircraft(Box::new(a))),
+                .map(|a| EstimatorState::Aircraft(Box::new(a))),
         }
     }
 
@@ -199,7 +199,7 @@ impl Estimator {
     /// its prediction.
     pub(crate) fn predict(
         &self,
-        state: &mut TrackState,
+        state: &mut EstimatorState,
         estimate: &Gaussian<4>,
         dt: f64,
         modes: &mut Vec<Option<ImmPrediction<4, 2>>>,
@@ -207,7 +207,7 @@ impl Estimator {
         match (self, state) {
             (Self::Kf(kf), _) => predict_single(kf, estimate, dt),
             (Self::Ekf { ekf, .. }, _) => predict_single(ekf, estimate, dt),
-            (Self::Imm(imm), TrackState::Imm(est)) => {
+            (Self::Imm(imm), EstimatorState::Imm(est)) => {
                 let p = if dt > 0.0 {
                     imm.predict(est, dt).ok()
                 } else {
@@ -220,13 +220,15 @@ impl Estimator {
                 modes.push(p);
                 combined
             }
-            (Self::MultiImm(multi), TrackState::Multi(m)) => {
+            (Self::MultiImm(multi), EstimatorState::MultiImm(m)) => {
                 if dt > 0.0 {
                     **m = multi.predict(m, dt).ok()?;
                 }
                 m.combined().ok()
             }
-            (Self::Aircraft { imm, .. }, TrackState::Aircraft(a)) => aircraft::predict(imm, a, dt),
+            (Self::Aircraft { imm, .. }, EstimatorState::Aircraft(a)) => {
+                aircraft::predict(imm, a, dt)
+            }
             (Self::Imm(_), _) => {
                 modes.push(None);
                 None
@@ -251,11 +253,11 @@ impl Estimator {
     /// for the plots of `sensor`; `None` for the other estimators or when it fails.
     pub(crate) fn aircraft_gate<'a>(
         &'a self,
-        state: &'a TrackState,
+        state: &'a EstimatorState,
         sensor: Option<&'a PolarModel>,
     ) -> Option<AircraftGate<'a>> {
         match (self, state) {
-            (Self::Aircraft { imm, .. }, TrackState::Aircraft(a)) => {
+            (Self::Aircraft { imm, .. }, EstimatorState::Aircraft(a)) => {
                 AircraftGate::new(imm, a, sensor?)
             }
             _ => None,
@@ -269,7 +271,7 @@ impl Estimator {
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn update(
         &self,
-        state: &mut TrackState,
+        state: &mut EstimatorState,
         pred: Gaussian<4>,
         modes: Option<ImmPrediction<4, 2>>,
         hit: Option<usize>,
@@ -288,7 +290,7 @@ impl Estimator {
                     ekf_update(ekf, kf, &pred, polar, p)
                 })
             }
-            (Self::Imm(imm), TrackState::Imm(est)) => {
+            (Self::Imm(imm), EstimatorState::Imm(est)) => {
                 let ip = modes?;
                 if weights.is_empty() {
                     imm_step(imm, ip, hit.map(|j| &points[j])).map(|(g, ll, e)| {
@@ -302,7 +304,7 @@ impl Estimator {
                     })
                 }
             }
-            (Self::MultiImm(multi), TrackState::Multi(m)) => match (hit, sensor) {
+            (Self::MultiImm(multi), EstimatorState::MultiImm(m)) => match (hit, sensor) {
                 (None, _) => Some((pred, None)),
                 (Some(j), Some(pm)) => points[j]
                     .polar
@@ -314,7 +316,7 @@ impl Estimator {
                 (Some(_), None) => None,
             },
             // JPDA (its weights), a hit or a coast.
-            (Self::Aircraft { imm, .. }, TrackState::Aircraft(a)) => match (hit, sensor) {
+            (Self::Aircraft { imm, .. }, EstimatorState::Aircraft(a)) => match (hit, sensor) {
                 (_, Some(pm)) if !weights.is_empty() => {
                     aircraft::jpda_update(imm, a, weights, points, pm).map(|g| (g, None))
                 }

@@ -10,9 +10,10 @@
 //! ([`argus_filters::Kf`] on [`argus_motion_models::Cv2D`]), an EKF updated with the
 //! polar plots themselves ([`argus_filters::Ekf`], [`argus_sensors::Polar2D`]), a two-mode
 //! CV IMM ([`argus_imm::Imm`]), seed 000's multi-IMM measurement-noise estimator
-//! ([`argus_imm::MultiImm`], its `R` estimate on [`Track::noise_estimate`]), or the
+//! ([`argus_imm::MultiImm`], its `R` estimate on [`EstimatorState::noise_estimate`]), or the
 //! aircraft IMM ([`argus_imm::AircraftImm`]: two CV modes and a coordinated turn with the
-//! turn rate as a state, its estimate on [`Track::turn_rate`]).
+//! turn rate as a state, its estimate on [`EstimatorState::turn_rate`]; each track's
+//! estimator state is [`Track::state`]).
 //!
 //! Polar plots are converted once per scan by the unbiased conversion
 //! ([`argus_sensors::convert_polar`], Mo Longbin et al. 1998) plus the sensor position:
@@ -145,19 +146,62 @@
 //! numerically is deleted alone.
 //!
 //! # API for the CLI
-//! Build a [`TrackerConfig`] (public fields, validated by [`Tracker::new`]), then feed
-//! plots with [`Tracker::process`] (a stream; consecutive plots of one time and
-//! synchronous sensor form a scan, a rotating sensor's go into its sectors) or
-//! [`Tracker::process_scan`] (one synchronous scan, possibly empty), and with rotating
-//! sensors [`Tracker::advance_to`] and [`Tracker::flush`] ([`Tracker::next_sector_end`]
-//! says when the next sector closes, so a caller can step sector by sector). Each
-//! returns [`ScanReport`]s (ids initiated, confirmed, deleted; for a sector, the tracks
-//! visited). After each scan,
-//! [`Tracker::tracks`] gives every live track's id, [`TrackStatus`] and estimate, and
-//! [`Tracker::deleted`] / [`Tracker::take_deleted`] the deleted ones with their
-//! [`DeletionReason`]: enough for `argus track --config` to write every track's states
-//! with id and status, and for `argus run surveillance` to score confirmed tracks with
-//! `argus_sim::Ospa`, `Gospa` and `TrackStatistics`.
+//! Build a [`TrackerConfig`] (public fields, validated by [`Tracker::new`]) and drive a
+//! [`Session`] with time-ordered [`Input`] events: plots, each with the caller's tag
+//! (e.g. its file line), marker times (time passes with no plot: an ASTERIX CAT034 north
+//! or sector message), rotations learnt from the stream (before the sensor's first plot;
+//! refused later, [`TrackerError::LateRotation`]), [`Input::EndOfScan`] and
+//! [`Input::End`]. The session owns the order of the tracker's calls: plots of one
+//! `(time, sensor)` handed in together, rotating radars stepped sector by sector, markers
+//! advanced to, the end flushed. It gives back [`Output`] values: per concluded scan or
+//! sector a [`Concluded`] (the [`ScanReport`]: sensor, sector or scan, span, plots
+//! assigned, ids initiated, confirmed, deleted; and one [`TrackSnapshot`] per track it
+//! concerns, in id order, with its estimate, [`EstimatorState`], score, status, deletion
+//! reason, [`TrackEvent`] and the plot that updated it), and at the end the live tracks.
+//! An error ([`SessionError`]) carries the tag of the plot it is about. This is what
+//! `argus track --config` writes its tracks CSV and summary from.
+//!
+//! The [`Tracker`] itself stays public for callers that want its steps: [`Tracker::process`]
+//! (a stream; consecutive plots of one time and synchronous sensor form a scan, a
+//! rotating sensor's go into its sectors), [`Tracker::process_scan`] (one synchronous
+//! scan, possibly empty), and with rotating sensors [`Tracker::advance_to`],
+//! [`Tracker::flush`] and [`Tracker::next_sector_end`]; each returns [`ScanReport`]s
+//! (ids only), after which [`Tracker::tracks`] and [`Tracker::take_deleted`] give the
+//! tracks (`argus run surveillance` scores confirmed tracks from them with
+//! `argus_sim::Ospa`, `Gospa` and `TrackStatistics`).
+//!
+//! ```
+//! use argus_core_math::{Matrix, Vector};
+//! use argus_tracker::{
+//!     Input, Output, Plot, SensorId, Session, TrackEvent, TrackStatus, TrackerConfig,
+//! };
+//!
+//! let mut session = Session::new(TrackerConfig::new(vec![SensorId(0)]))?;
+//! let r = Matrix::<2, 2>::identity() * 900.0;
+//! let mut out = Vec::new();
+//! for k in 0..4_u32 {
+//!     let t = 5.0 * f64::from(k);
+//!     let plot = Plot::cartesian(t, SensorId(0), Vector::<2>::new(200.0 * t, 0.0), r)?;
+//!     session.push(Input::Plot { plot, tag: 100 + u64::from(k) }, &mut out)?;
+//! }
+//! session.push(Input::End, &mut out)?;
+//! // Four scans (each concluded by the next plot, the last by the end), then the end.
+//! let Some(Output::Scan(second)) = out.get(1) else { panic!() };
+//! assert_eq!(second.report.initiated.len(), 1);
+//! assert_eq!(second.rows[0].event, TrackEvent::Started);
+//! let Some(Output::Scan(third)) = out.get(2) else { panic!() };
+//! assert_eq!(third.rows[0].event, TrackEvent::Confirmed);
+//! assert_eq!(third.rows[0].plot.map(|p| p.time()), Some(10.0));
+//! let Some(Output::End(live)) = out.last() else { panic!() };
+//! assert_eq!(live[0].status, TrackStatus::Confirmed);
+//!
+//! // A plot from an unknown sensor is named by its tag when its scan is handed in.
+//! let plot = Plot::cartesian(20.0, SensorId(7), Vector::<2>::new(0.0, 0.0), r)?;
+//! session.push(Input::Plot { plot, tag: 42 }, &mut out)?;
+//! let e = session.push(Input::EndOfScan, &mut out).unwrap_err();
+//! assert_eq!(e.tag, Some(42));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 //!
 //! # Not yet here
 //! JPDA with the multi-IMM (refused by the configuration); the
@@ -199,6 +243,7 @@ mod management;
 mod pda;
 mod plot;
 mod rotation;
+mod session;
 mod state;
 mod track;
 mod tracker;
@@ -215,7 +260,8 @@ pub use config::{
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
 pub use rotation::{Rotation, RotationDirection};
-pub use state::{MULTI_IMM_HYPOTHESES, ModeProbabilities};
+pub use session::{Concluded, Input, Output, Session, SessionError, TrackEvent, TrackSnapshot};
+pub use state::{EstimatorState, MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};
 pub use two_mode::{TwoModeImm, two_mode_imm};

@@ -1,14 +1,14 @@
-//! Each track's estimator state, one variant per kind of [`crate::estimator::Estimator`].
+//! Each track's estimator state ([`EstimatorState`]), one variant per kind of estimator.
 
 use argus_imm::{AircraftEstimate, ImmEstimate, MultiImmEstimate, NoiseVariances};
 
 /// Number of noise hypotheses `K` of [`crate::EstimatorConfig::MultiImm`] (seed 000: 5).
 pub const MULTI_IMM_HYPOTHESES: usize = 5;
 
-/// A track's multi-IMM state (boxed in the track: it is large).
+/// A track's multi-IMM state ([`EstimatorState::MultiImm`], boxed: it is large).
 pub(crate) type MultiState = MultiImmEstimate<4, 2, MULTI_IMM_HYPOTHESES>;
 
-/// A track's aircraft-IMM state: two CV modes and the CT mode (boxed in the track: at
+/// A track's aircraft-IMM state ([`EstimatorState::Aircraft`]): two CV modes and the CT mode (boxed in the track: at
 /// 584 bytes it would almost double every other estimator's track if it were inline).
 pub(crate) type AircraftState = AircraftEstimate<2, 3>;
 
@@ -48,23 +48,38 @@ impl std::ops::Deref for ModeProbabilities {
     }
 }
 
-/// What a track's estimator keeps between scans besides the track's (combined) estimate.
+/// What a track's estimator keeps between scans besides the track's (combined) estimate
+/// ([`crate::Track::estimate`]), one variant per [`crate::EstimatorConfig`] kind: read
+/// it as [`crate::Track::state`] or on a session's snapshot
+/// ([`crate::TrackSnapshot::state`]).
+///
+/// Each state is the estimator's at the track's time: after a plot the posterior (with
+/// JPDA: the per-mode PDA moments), after a miss the mode predictions with `μ̄` as
+/// probabilities. It is what a smoother of the track's forward pass needs (`argus track
+/// --smooth`).
 ///
 /// The IMM state stays inline, as it was in the track before this enum: boxing it would
 /// add an allocation per track and an indirection per scan on the IMM path, and KF tracks
 /// carried the same unused space in an `Option` then.
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) enum TrackState {
-    /// KF and EKF: the track's estimate is the whole state.
-    Single,
-    /// The two-mode IMM's mode-conditioned estimates and probabilities.
+pub enum EstimatorState {
+    /// KF and EKF ([`crate::EstimatorConfig::Kf`], [`crate::EstimatorConfig::Ekf`]): the
+    /// track's estimate is the whole state.
+    Plain,
+    /// The two-mode CV IMM ([`crate::EstimatorConfig::ImmCv2`]): the mode-conditioned
+    /// estimates `x̂ⁱ, Pⁱ` and probabilities `μⁱ` (quiet, manoeuvre) of which the track's
+    /// estimate is the moment match.
     Imm(ImmEstimate<4, 2>),
-    /// The multi-IMM's hypotheses and noise reference.
-    Multi(Box<MultiState>),
-    /// The aircraft IMM's modes and probabilities (between the prediction and the update
-    /// of a scan: the predicted modes, with `μ̄` as probabilities).
-    Aircraft(Box<AircraftState>),
+    /// The multi-IMM ([`crate::EstimatorConfig::MultiImm`]): its
+    /// [`MULTI_IMM_HYPOTHESES`] IMM estimates, the noise-mode probabilities `νᵐ` and the
+    /// noise reference ([`MultiImmEstimate::merged`]: the posterior merged over the noise
+    /// hypotheses).
+    MultiImm(Box<MultiImmEstimate<4, 2, MULTI_IMM_HYPOTHESES>>),
+    /// The aircraft IMM ([`crate::EstimatorConfig::Aircraft`]): the CV modes' estimates on
+    /// `[x, vx, y, vy]`, the CT mode's on `[x, vx, y, vy, ω]` and the mode probabilities
+    /// (CV quiet, CV manoeuvre, CT).
+    Aircraft(Box<AircraftEstimate<2, 3>>),
 }
 
 /// A copy of a track's estimator state taken out of its box, so that saving it and
@@ -73,12 +88,12 @@ pub(crate) enum TrackState {
 /// becomes its prediction, is refused with rotating sensors.
 pub(crate) type SavedState = AircraftState;
 
-impl TrackState {
+impl EstimatorState {
     /// A copy of the aircraft IMM's state (`None` for every other estimator).
     pub(crate) fn save(&self) -> Option<SavedState> {
         match self {
             Self::Aircraft(a) => Some(**a),
-            Self::Single | Self::Imm(_) | Self::Multi(_) => None,
+            Self::Plain | Self::Imm(_) | Self::MultiImm(_) => None,
         }
     }
 
@@ -89,53 +104,37 @@ impl TrackState {
         }
     }
 
-    /// The mode probabilities of an IMM, multi-IMM or aircraft-IMM state.
-    pub(crate) fn mode_probabilities(&self) -> Option<ModeProbabilities> {
+    /// The IMM mode probabilities when the estimator is an IMM (quiet, manoeuvre), a
+    /// multi-IMM (the same, `Σₘ νᵐ μⱼᵐ`) or the aircraft IMM (CV quiet, CV manoeuvre,
+    /// CT); `None` for KF and EKF.
+    #[must_use]
+    pub fn mode_probabilities(&self) -> Option<ModeProbabilities> {
         match self {
-            Self::Single => None,
+            Self::Plain => None,
             Self::Imm(imm) => Some(ModeProbabilities::of(&imm.mode_probabilities())),
-            Self::Multi(m) => Some(ModeProbabilities::of(&m.mode_probabilities())),
+            Self::MultiImm(m) => Some(ModeProbabilities::of(&m.mode_probabilities())),
             Self::Aircraft(a) => Some(ModeProbabilities::of(&a.mode_probabilities())),
         }
     }
 
-    /// The two-mode CV IMM's mode-conditioned estimates and probabilities.
-    pub(crate) fn imm_estimate(&self) -> Option<&ImmEstimate<4, 2>> {
+    /// The multi-IMM's current measurement-noise estimate `(σ_r², σ_θ²)` (its reference
+    /// variances, seed 000 eq 13); `None` for the other estimators.
+    #[must_use]
+    pub fn noise_estimate(&self) -> Option<NoiseVariances> {
         match self {
-            Self::Imm(imm) => Some(imm),
-            Self::Single | Self::Multi(_) | Self::Aircraft(_) => None,
+            Self::Plain | Self::Imm(_) | Self::Aircraft(_) => None,
+            Self::MultiImm(m) => Some(*m.reference()),
         }
     }
 
-    /// The multi-IMM's state: its `K` IMM estimates and noise-mode probabilities.
-    pub(crate) fn multi_imm_estimate(&self) -> Option<&MultiState> {
-        match self {
-            Self::Multi(m) => Some(m),
-            Self::Single | Self::Imm(_) | Self::Aircraft(_) => None,
-        }
-    }
-
-    /// The aircraft IMM's mode-conditioned estimates and probabilities.
-    pub(crate) fn aircraft_estimate(&self) -> Option<&AircraftState> {
-        match self {
-            Self::Aircraft(a) => Some(a),
-            Self::Single | Self::Imm(_) | Self::Multi(_) => None,
-        }
-    }
-
-    /// The multi-IMM's measurement-noise reference.
-    pub(crate) fn noise_estimate(&self) -> Option<NoiseVariances> {
-        match self {
-            Self::Single | Self::Imm(_) | Self::Aircraft(_) => None,
-            Self::Multi(m) => Some(*m.reference()),
-        }
-    }
-
-    /// The aircraft IMM's CT-mode turn rate and its standard deviation (rad/s).
-    pub(crate) fn turn_rate(&self) -> Option<(f64, f64)> {
+    /// The aircraft IMM's turn-rate estimate and its standard deviation (rad/s,
+    /// counter-clockwise positive): the CT mode's `ω̂` and `√P_ωω`, conditional on the CT
+    /// mode; `None` for the other estimators.
+    #[must_use]
+    pub fn turn_rate(&self) -> Option<(f64, f64)> {
         match self {
             Self::Aircraft(a) => Some(a.turn_rate()),
-            Self::Single | Self::Imm(_) | Self::Multi(_) => None,
+            Self::Plain | Self::Imm(_) | Self::MultiImm(_) => None,
         }
     }
 }

@@ -1,10 +1,9 @@
 //! Tracks, their ids and statuses.
 
 use argus_core_math::Gaussian;
-use argus_imm::{AircraftEstimate, ImmEstimate, MultiImmEstimate, NoiseVariances};
 
-use crate::MULTI_IMM_HYPOTHESES;
-use crate::state::{ModeProbabilities, TrackState};
+use crate::Plot;
+use crate::state::EstimatorState;
 
 /// A track's id: numbered from 0 in order of initiation and never reused.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -53,7 +52,9 @@ pub struct Track {
     pub(crate) last_hit: bool,
     pub(crate) score: f64,
     pub(crate) peak_score: f64,
-    pub(crate) state: TrackState,
+    pub(crate) state: EstimatorState,
+    /// The plot of its last step ([`Track::plot`]).
+    pub(crate) plot: Option<Plot>,
     /// Per sensor index, what rotating sensors know of this track (empty until one
     /// looks at it; missing entries: never looked at).
     pub(crate) looks: Vec<Look>,
@@ -145,63 +146,20 @@ impl Track {
         self.last_hit
     }
 
-    /// The IMM mode probabilities when the estimator is an IMM (quiet, manoeuvre), a
-    /// multi-IMM (the same, `Σₘ νᵐ μⱼᵐ`) or the aircraft IMM (CV quiet, CV manoeuvre,
-    /// CT).
+    /// The estimator's state at [`Track::time`] besides [`Track::estimate`] (its mode
+    /// probabilities, noise estimate, turn rate, mode-conditioned estimates): a borrow,
+    /// nothing copied or allocated.
     #[must_use]
-    pub fn mode_probabilities(&self) -> Option<ModeProbabilities> {
-        self.state.mode_probabilities()
+    pub fn state(&self) -> &EstimatorState {
+        &self.state
     }
 
-    /// The two-mode CV IMM's state at [`Track::time`] ([`crate::EstimatorConfig::ImmCv2`]
-    /// only): the mode-conditioned estimates `x̂ⁱ, Pⁱ` and probabilities `μⁱ` (quiet,
-    /// manoeuvre) of which [`Track::estimate`] is the moment match — after a plot the
-    /// IMM's posterior (with JPDA: the per-mode PDA moments), after a miss its mode
-    /// predictions with `μ̄`. What an IMM smoother of the track's forward pass needs
-    /// (`argus track --smooth`); a borrow, nothing copied or allocated.
+    /// The plot of its last step: the one that updated it (with JPDA, the most probable
+    /// of the plots it was weighed with), its second initiating plot in the step that
+    /// started it, `None` after a miss.
     #[must_use]
-    pub fn imm_estimate(&self) -> Option<&ImmEstimate<4, 2>> {
-        self.state.imm_estimate()
-    }
-
-    /// The multi-IMM's state at [`Track::time`] ([`crate::EstimatorConfig::MultiImm`]
-    /// only): its [`MULTI_IMM_HYPOTHESES`] IMM estimates (each the two-mode CV IMM's
-    /// mode-conditioned estimates and probabilities), the noise-mode probabilities `νᵐ`
-    /// and the noise reference — after a plot the multi-IMM's posterior, after a miss its
-    /// IMMs' mode predictions with `μ̄`. [`MultiImmEstimate::merged`] is its posterior
-    /// merged over the noise hypotheses, what an IMM smoother of the track's recorded
-    /// moments needs (`argus track --smooth`); a borrow.
-    #[must_use]
-    pub fn multi_imm_estimate(&self) -> Option<&MultiImmEstimate<4, 2, MULTI_IMM_HYPOTHESES>> {
-        self.state.multi_imm_estimate()
-    }
-
-    /// The aircraft IMM's state at [`Track::time`] ([`crate::EstimatorConfig::Aircraft`]
-    /// only): the CV modes' estimates on `[x, vx, y, vy]`, the CT mode's on
-    /// `[x, vx, y, vy, ω]` and the mode probabilities (CV quiet, CV manoeuvre, CT) of which
-    /// [`Track::estimate`] is the moment match — after a plot the IMM's posterior (with
-    /// JPDA: the per-mode PDA moments), after a miss its mode predictions with `μ̄`. What
-    /// the aircraft-IMM smoother of the track's forward pass needs (`argus track
-    /// --smooth`); a borrow.
-    #[must_use]
-    pub fn aircraft_estimate(&self) -> Option<&AircraftEstimate<2, 3>> {
-        self.state.aircraft_estimate()
-    }
-
-    /// The aircraft IMM's turn-rate estimate and its standard deviation (rad/s,
-    /// counter-clockwise positive): the CT mode's `ω̂` and `√P_ωω`, conditional on the
-    /// CT mode ([`crate::EstimatorConfig::Aircraft`] only).
-    #[must_use]
-    pub fn turn_rate(&self) -> Option<(f64, f64)> {
-        self.state.turn_rate()
-    }
-
-    /// The multi-IMM's current measurement-noise estimate `(σ_r², σ_θ²)` (its reference
-    /// variances, seed 000 eq 13) when the estimator is
-    /// [`crate::EstimatorConfig::MultiImm`].
-    #[must_use]
-    pub fn noise_estimate(&self) -> Option<NoiseVariances> {
-        self.state.noise_estimate()
+    pub fn plot(&self) -> Option<&Plot> {
+        self.plot.as_ref()
     }
 
     /// Its track score (log-likelihood ratio), kept when

@@ -109,6 +109,8 @@ pub struct Tracker {
     jpda_dl: Vec<Option<f64>>,
     /// A sector's plot times (parallel to `points`; empty in a synchronous scan).
     point_times: Vec<f64>,
+    /// The plots of `points` as given (parallel to `points`), for [`Track::plot`].
+    point_plots: Vec<Plot>,
     /// A sector's role of each track.
     roles: Vec<Role>,
     /// An IMM track's prediction to its plot's time.
@@ -161,6 +163,7 @@ impl Tracker {
             jpda: Vec::new(),
             jpda_dl: Vec::new(),
             point_times: Vec::new(),
+            point_plots: Vec::new(),
             roles: Vec::new(),
             modes: Vec::new(),
             saved: Vec::new(),
@@ -337,6 +340,8 @@ impl Tracker {
         }
         self.points = points;
         self.point_times.clear();
+        self.point_plots.clear();
+        self.point_plots.extend_from_slice(plots);
         self.scan_sensor = s;
         Ok(self.run_scan(time))
     }
@@ -371,10 +376,12 @@ impl Tracker {
         for (k, track) in self.tracks.iter_mut().enumerate() {
             let Some(pred) = self.predicted[k].take() else {
                 track.delete(DeletionReason::FilterFailure);
+                track.plot = None;
                 report.deleted.push(track.id);
                 continue;
             };
             let hit = self.assigned[k];
+            let plot = hit.map(|j| self.point_plots[j]);
             let posterior = self.est.update(
                 &mut track.state,
                 pred,
@@ -390,7 +397,7 @@ impl Tracker {
                 track,
                 &mut report,
                 posterior,
-                hit.is_some(),
+                plot,
                 self.jpda_dl[k],
                 time,
             );
@@ -428,8 +435,8 @@ fn add_score(
     }
 }
 
-/// Concludes one track's step in a scan or a sector: a failed filter step (`outcome`
-/// `None`) deletes the track; otherwise its posterior becomes the estimate at `time`, the
+/// Concludes one track's step in a scan or a sector, `plot` the plot assigned to it (a
+/// hit) or `None` (a miss): a failed filter step (`outcome` `None`) deletes the track; otherwise its posterior becomes the estimate at `time`, the
 /// track score takes the opportunity's increment ([`add_score`]) and the hit or miss is
 /// counted for confirmation and deletion, each event recorded in `report`. Returns
 /// whether the step succeeded.
@@ -440,10 +447,12 @@ fn conclude(
     track: &mut Track,
     report: &mut ScanReport,
     outcome: Option<(Gaussian<4>, Option<f64>)>,
-    hit: bool,
+    plot: Option<Plot>,
     dl: Option<f64>,
     time: f64,
 ) -> bool {
+    let hit = plot.is_some();
+    track.plot = plot;
     let Some((posterior, log_likelihood)) = outcome else {
         track.delete(DeletionReason::FilterFailure);
         report.deleted.push(track.id);

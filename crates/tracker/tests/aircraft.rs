@@ -181,7 +181,7 @@ fn run(cfg: &TrackerConfig, seed: u64) -> Run {
                 if t >= WARMUP {
                     out.se.push((m[0] - x[0]).powi(2) + (m[2] - x[2]).powi(2));
                 }
-                if let Some((w, s)) = tr.turn_rate()
+                if let Some((w, s)) = tr.state().turn_rate()
                     && out.on_target.first() == Some(&tr.id())
                 {
                     out.turn_rate.push((t, w, s));

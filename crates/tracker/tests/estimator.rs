@@ -59,7 +59,7 @@ fn imm_of_identical_modes_equals_the_kalman_filter() {
                 dm < 1e-6 && dp < 1e-6 * a.estimate().cov().norm(),
                 "scan {k}: {dm} {dp}"
             );
-            assert!(b.mode_probabilities().is_some());
+            assert!(b.state().mode_probabilities().is_some());
         }
     }
 }

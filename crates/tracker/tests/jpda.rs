@@ -233,7 +233,7 @@ fn imm_jpda_with_identical_modes_is_jpda_with_the_kf() {
                     && dp <= 1e-9 * a.estimate().cov().norm(),
                 "scan {k}: {dm} {dp}"
             );
-            let mu = b.mode_probabilities().unwrap();
+            let mu = b.state().mode_probabilities().unwrap();
             assert!((mu[0] - 0.5).abs() < 1e-9, "{mu:?}");
         }
     }

@@ -195,8 +195,8 @@ fn multi_imm_ratio(run: u64, start: f64) -> [f64; 2] {
     }
     let tracks = tracker.tracks();
     assert_eq!(tracks.len(), 1);
-    assert!(tracks[0].mode_probabilities().is_some());
-    let r = tracks[0].noise_estimate().unwrap();
+    assert!(tracks[0].state().mode_probabilities().is_some());
+    let r = tracks[0].state().noise_estimate().unwrap();
     [
         r.range() / (TRUE[0] * TRUE[0]),
         r.azimuth() / (TRUE[1] * TRUE[1]),

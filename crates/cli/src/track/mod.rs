@@ -10,7 +10,6 @@
 //! aircraft IMM, its own) or the multi-target tracker ([`multi`]); both write their rows
 //! through [`argus_io::rows`].
 
-mod feed;
 mod mode_record;
 mod multi;
 mod multi_files;

@@ -8,10 +8,9 @@ use argus_config::MultiTarget;
 use argus_io::output::{AtomicFile, write_atomic};
 use argus_io::plotfile::FilePlot;
 use argus_io::rows::{Column, TrackRows};
-use argus_tracker::{AssociationConfig, EstimatorConfig, TrackStatus, Tracker, TrackerConfig};
+use argus_tracker::{AssociationConfig, EstimatorConfig, Input, Output, Session, TrackerConfig};
 
-use super::feed::Feed;
-use super::multi_files::Files;
+use super::multi_files::{Files, plot_error, tracker_plot};
 use super::multi_smooth::Recorded;
 use super::smooth::Smoothing;
 use super::tally::{Counts, Tally};
@@ -56,6 +55,28 @@ pub(super) fn columns(c: &TrackerConfig) -> Vec<Column> {
         cols.splice(at..at, Column::TURN_RATE);
     }
     cols
+}
+
+/// Pushes `input` into the session and hands what it concludes to the tally (`outputs`: a
+/// reused buffer, left empty).
+///
+/// # Errors
+/// [`CliError::Input`] naming the plot's line for a plot the tracker refuses.
+pub(super) fn push(
+    session: &mut Session,
+    tally: &mut Tally<'_>,
+    files: &Files<'_>,
+    input: Input,
+    outputs: &mut Vec<Output>,
+) -> Result<(), CliError> {
+    let result = session.push(input, outputs);
+    for o in outputs.drain(..) {
+        match o {
+            Output::Scan(c) => tally.record(c),
+            Output::End(tracks) => tally.end(&tracks),
+        }
+    }
+    result.map_err(|e| plot_error(files, e))
 }
 
 /// `<out>.summary.json`.
@@ -109,7 +130,7 @@ pub(super) fn run(
         Some(_) => Some(Recorded::new(c)?),
         None => None,
     };
-    let mut tracker = Tracker::new(c.clone())?;
+    let mut session = Session::new(c.clone())?;
     let mut columns = columns(c);
     if let Some(rec) = &recorded {
         columns.extend(rec.columns());
@@ -117,32 +138,39 @@ pub(super) fn run(
     let mut out = TrackRows::with_reference(columns, files.reference);
     let mut file = AtomicFile::create(files.out)?;
     let mut tally = Tally::new(&mut out, recorded.as_mut());
-    let mut feed = Feed::new(c);
+    let mut outputs = Vec::new();
     let mut n_plots = 0;
     let mut markers = files.markers.iter().copied().peekable();
     for p in plots {
         let p = p?;
         while let Some(m) = markers.next_if(|m| *m <= p.time()) {
-            feed.advance(&mut tracker, &mut tally, files, m)?;
+            push(
+                &mut session,
+                &mut tally,
+                files,
+                Input::Marker(m),
+                &mut outputs,
+            )?;
         }
-        feed.push(&mut tracker, &mut tally, files, &p)?;
+        let plot = tracker_plot(files, &p)?;
+        let input = Input::Plot { plot, tag: p.line };
+        push(&mut session, &mut tally, files, input, &mut outputs)?;
         n_plots += 1;
         if tally.out.pending() >= FLUSH_BYTES {
             tally.out.write_to(&mut file)?;
         }
     }
     for m in markers {
-        feed.advance(&mut tracker, &mut tally, files, m)?;
+        push(
+            &mut session,
+            &mut tally,
+            files,
+            Input::Marker(m),
+            &mut outputs,
+        )?;
     }
-    feed.finish(&mut tracker, &mut tally, files)?;
-    let (scans, assigned, mut counts) = (tally.scans, tally.assigned, tally.counts);
-    for tr in tracker.tracks() {
-        match tr.status() {
-            TrackStatus::Tentative => counts.tentative_at_end += 1,
-            TrackStatus::Confirmed => counts.confirmed_at_end += 1,
-            TrackStatus::Deleted => {}
-        }
-    }
+    push(&mut session, &mut tally, files, Input::End, &mut outputs)?;
+    let (scans, assigned, counts) = (tally.scans, tally.assigned, tally.counts);
     let smoothed_tracks = match (recorded, files.smoothing) {
         (Some(rec), Some(how)) => Some(rec.smooth_into(how, &mut out)?),
         _ => None,

@@ -6,7 +6,7 @@ use std::path::Path;
 use argus_config::Reference;
 use argus_io::plotfile::FilePlot;
 use argus_sensors::Measurement;
-use argus_tracker::{Plot, TrackerError};
+use argus_tracker::{Plot, SessionError, TrackerError};
 
 use super::smooth::Smoothing;
 use crate::error::CliError;
@@ -24,7 +24,7 @@ pub(super) struct Files<'a> {
     /// `--smooth` / `--smooth-lag` ([`super::multi_smooth`]).
     pub(super) smoothing: Option<Smoothing>,
     /// Times the tracker advances to with no plot (an ASTERIX file's CAT034 messages,
-    /// [`super::source`]), in order.
+    /// [`argus_io::source`]), in order.
     pub(super) markers: &'a [f64],
 }
 
@@ -43,23 +43,22 @@ pub(super) fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliE
     }
 }
 
-/// A [`TrackerError`] about plot `index` of the plots handed to the tracker together,
-/// whose file lines are `lines`, at that plot's line.
-pub(super) fn plot_error(files: &Files<'_>, lines: &[u64], e: TrackerError) -> CliError {
-    let (index, field) = match &e {
-        TrackerError::TimeOrder { index, .. } => (*index, Some("t")),
-        TrackerError::UnknownSensor { index, .. } => (*index, Some("sensor")),
-        TrackerError::NoPolarNoise { index, .. } | TrackerError::NotPolar { index, .. } => {
-            (*index, Some("sensor"))
-        }
-        TrackerError::NonPositiveRange { index, .. } | TrackerError::Conversion { index, .. } => {
-            (*index, Some("range"))
-        }
-        TrackerError::NonFinite { index, .. }
-        | TrackerError::PlotCovariance { index, .. }
-        | TrackerError::MixedScan { index, .. } => (*index, None),
+/// A session's error: a [`TrackerError`] about a plot at that plot's line (its tag).
+pub(super) fn plot_error(files: &Files<'_>, e: SessionError) -> CliError {
+    let SessionError {
+        error: e,
+        tag: line,
+    } = e;
+    let field = match &e {
+        TrackerError::TimeOrder { .. } => Some("t"),
+        TrackerError::UnknownSensor { .. }
+        | TrackerError::NoPolarNoise { .. }
+        | TrackerError::NotPolar { .. } => Some("sensor"),
+        TrackerError::NonPositiveRange { .. } | TrackerError::Conversion { .. } => Some("range"),
+        TrackerError::NonFinite { .. }
+        | TrackerError::PlotCovariance { .. }
+        | TrackerError::MixedScan { .. } => None,
         _ => return CliError::Tracker(e),
     };
-    let line = lines.get(index).copied();
     CliError::input(files.plots, line, field, format!("tracker: {e}"))
 }

@@ -10,7 +10,7 @@
 //! tracker's own `x̂ₖ⁻, Pₖ⁻` to round-off, and `Cₖ = Pₖ₋₁ Fᵀ` ([`super::smooth`]).
 //!
 //! # The two-mode IMM (`imm`, [`EstimatorConfig::ImmCv2`])
-//! Each row keeps the track's IMM state ([`Track::imm_estimate`]: the mode-conditioned
+//! Each row keeps the track's IMM state ([`EstimatorState::Imm`]: the mode-conditioned
 //! estimates `x̂ⁱₖ, Pⁱₖ` and probabilities `μⁱₖ`, after the plot or, after a miss, the
 //! mode predictions with `μ̄`), and the track is smoothed by `argus_imm`'s fixed-interval
 //! IMM smoother ([`argus_imm::imm_smooth`], the single-target `imm`'s, through the same
@@ -35,7 +35,7 @@
 //! probabilities go to `mu_1s, mu_2s`.
 //!
 //! # The aircraft IMM (`aircraft-imm`, [`EstimatorConfig::Aircraft`])
-//! Each row keeps the track's aircraft-IMM state ([`Track::aircraft_estimate`]: the CV
+//! Each row keeps the track's aircraft-IMM state ([`EstimatorState::Aircraft`]: the CV
 //! modes' `[x, vx, y, vy]`, the CT mode's `[x, vx, y, vy, ω]` and the three mode
 //! probabilities, after the plot or, after a miss, the mode predictions with `μ̄`), and
 //! the track is smoothed by `argus_imm`'s aircraft-IMM smoother
@@ -48,7 +48,7 @@
 //! The smoothed mode probabilities go to `mu_1s, mu_2s, mu_3s`.
 //!
 //! # The multi-IMM (`multi-imm`, [`EstimatorConfig::MultiImm`])
-//! Each row keeps the track's multi-IMM state ([`Track::multi_imm_estimate`]: the
+//! Each row keeps the track's multi-IMM state ([`EstimatorState::MultiImm`]: the
 //! [`MULTI_IMM_HYPOTHESES`] IMMs' mode estimates and probabilities and the noise-mode
 //! probabilities `νᵐ`, after the plot or, after a miss, the IMMs' mode predictions), and
 //! the track is smoothed over its recorded moments, as IMM-JPDA tracks are: the
@@ -77,8 +77,8 @@ use argus_imm::{
 use argus_io::rows::{Column, Point, TrackRows};
 use argus_motion_models::Cv2D;
 use argus_tracker::{
-    DeletionReason, EstimatorConfig, MULTI_IMM_HYPOTHESES, ModeProbabilities, SensorId, Track,
-    TrackStatus, TrackerConfig, TwoModeImm, two_mode_imm,
+    DeletionReason, EstimatorConfig, EstimatorState, MULTI_IMM_HYPOTHESES, ModeProbabilities,
+    SensorId, TrackSnapshot, TrackStatus, TrackerConfig, TwoModeImm, two_mode_imm,
 };
 
 use super::mode_record::ModeRecorder;
@@ -174,21 +174,30 @@ impl Recorded {
     }
 
     /// Keeps the row of `track` from the scan of `sensor`.
-    pub(super) fn push(&mut self, sensor: SensorId, track: &Track) {
+    pub(super) fn push(&mut self, sensor: SensorId, track: TrackSnapshot) {
+        let modes = track.mode_probabilities();
+        let noise = track.noise_estimate();
+        let turn_rate = track.turn_rate();
+        let (imm, multi, aircraft) = match track.state {
+            EstimatorState::Plain => (None, None, None),
+            EstimatorState::Imm(imm) => (Some(imm), None, None),
+            EstimatorState::MultiImm(m) => (None, Some(m), None),
+            EstimatorState::Aircraft(a) => (None, None, Some(a)),
+        };
         self.rows.push(Row {
             sensor: sensor.0,
-            track: track.id().0,
-            status: track.status(),
-            reason: track.deletion(),
-            time: track.time(),
-            estimate: *track.estimate(),
-            modes: track.mode_probabilities(),
-            noise: track.noise_estimate(),
-            score: track.score(),
-            imm: track.imm_estimate().copied(),
-            multi: track.multi_imm_estimate().map(|m| Box::new(*m)),
-            aircraft: track.aircraft_estimate().map(|a| Box::new(*a)),
-            turn_rate: track.turn_rate(),
+            track: track.id.0,
+            status: track.status,
+            reason: track.deletion,
+            time: track.time,
+            estimate: track.estimate,
+            modes,
+            noise,
+            score: track.score,
+            imm,
+            multi,
+            aircraft,
+            turn_rate,
         });
     }
 

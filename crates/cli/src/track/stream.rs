@@ -7,11 +7,10 @@ use std::path::{Path, PathBuf};
 use argus_config::{Job, MultiTarget, Reference};
 use argus_io::plotfile::{self, FilePlot};
 use argus_io::rows::TrackRows;
-use argus_tracker::Tracker;
+use argus_tracker::{Input, Session};
 
-use super::feed::Feed;
 use super::multi;
-use super::multi_files::Files;
+use super::multi_files::{Files, tracker_plot};
 use super::tally::Tally;
 use crate::error::CliError;
 
@@ -20,7 +19,7 @@ use crate::error::CliError;
 #[derive(Debug, Clone)]
 pub struct TrackStream {
     job: MultiTarget,
-    tracker: Tracker,
+    session: Session,
     config: PathBuf,
     reference: Option<Reference>,
     /// Geodetic sites' `(sensor, γ)` ([`FilePlot::to_reference`]).
@@ -37,7 +36,7 @@ impl TrackStream {
         let loaded = argus_config::load(config)?;
         match loaded.job {
             Job::Multi(m) => Ok(Self {
-                tracker: Tracker::new(m.config.clone())?,
+                session: Session::new(m.config.clone())?,
                 job: m,
                 config: config.to_path_buf(),
                 reference: loaded.reference,
@@ -61,10 +60,10 @@ impl TrackStream {
     /// As `argus track` for the plots.
     pub fn process(&mut self, text: &str, name: &Path) -> Result<String, CliError> {
         let plots = plotfile::read_text(text, name)?;
-        let before = self.tracker.clone();
+        let before = self.session.clone();
         let result = self.scans(&plots, name);
         if result.is_err() {
-            self.tracker = before;
+            self.session = before;
         }
         result
     }
@@ -81,14 +80,19 @@ impl TrackStream {
         let mut out =
             TrackRows::with_reference(multi::columns(&self.job.config), self.reference.as_ref());
         let mut tally = Tally::new(&mut out, None);
-        let mut feed = Feed::new(&self.job.config);
+        let mut outputs = Vec::new();
         for p in plots {
             let p = p.to_reference(&self.grid_rotations);
-            feed.push(&mut self.tracker, &mut tally, &files, &p)?;
+            let input = Input::Plot {
+                plot: tracker_plot(&files, &p)?,
+                tag: p.line,
+            };
+            multi::push(&mut self.session, &mut tally, &files, input, &mut outputs)?;
         }
         // The call's last plots are a whole scan; a rotating sensor's sector stays open
         // until a later call's plots (or none: the tracker holds it) pass its end.
-        feed.conclude(&mut self.tracker, &mut tally, &files)?;
+        let end = Input::EndOfScan;
+        multi::push(&mut self.session, &mut tally, &files, end, &mut outputs)?;
         Ok(out.into_text())
     }
 }

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use argus_io::rows::{Point, TrackRows};
-use argus_tracker::{DeletionReason, ScanReport, SensorId, Track, Tracker};
+use argus_tracker::{Concluded, DeletionReason, SensorId, TrackSnapshot, TrackStatus};
 
 use super::multi_smooth::Recorded;
 use super::names::{reason_name, status_name};
@@ -55,39 +55,38 @@ impl<'a> Tally<'a> {
         }
     }
 
-    /// Counts one report (a scan or a sector) and writes its rows: every track of a
-    /// synchronous scan; the tracks a sector visited (updated or missed), initiated (at
-    /// the second plot's time, as a scan's first row of a track) and deleted. In id order (live tracks are in id order; a deleted one goes in its
-    /// place).
-    pub(super) fn record(&mut self, tracker: &mut Tracker, report: &ScanReport) {
+    /// Counts one concluded scan or sector and writes its rows (the session's: every
+    /// track of a synchronous scan; the tracks a sector visited, initiated and deleted; in
+    /// id order).
+    pub(super) fn record(&mut self, concluded: Concluded) {
+        let Concluded { report, rows } = concluded;
         self.scans += 1;
         self.assigned += report.assigned;
         let counts = &mut self.counts;
         counts.initiated += report.initiated.len();
         counts.confirmed += report.confirmed.len();
         counts.deleted += report.deleted.len();
-        let deleted = tracker.take_deleted();
-        for d in &deleted {
-            if let Some(r) = d.deletion() {
+        for d in rows.iter().filter(|r| r.status == TrackStatus::Deleted) {
+            if let Some(r) = d.deletion {
                 *counts.deleted_by_reason.entry(reason_name(r)).or_insert(0) += 1;
             }
-            if d.confirmed_at().is_some() {
+            if d.confirmed_at.is_some() {
                 counts.deleted_after_confirmation += 1;
             }
         }
-        let mut all: Vec<&Track> = tracker
-            .tracks()
-            .iter()
-            .filter(|tr| {
-                !report.sector
-                    || report.visited.binary_search(&tr.id()).is_ok()
-                    || report.initiated.contains(&tr.id())
-            })
-            .chain(&deleted)
-            .collect();
-        all.sort_by_key(|tr| tr.id());
-        for tr in all {
+        for tr in rows {
             row(self.out, self.recorded.as_deref_mut(), report.sensor, tr);
+        }
+    }
+
+    /// Counts the tracks live at the end.
+    pub(super) fn end(&mut self, tracks: &[TrackSnapshot]) {
+        for tr in tracks {
+            match tr.status {
+                TrackStatus::Tentative => self.counts.tentative_at_end += 1,
+                TrackStatus::Confirmed => self.counts.confirmed_at_end += 1,
+                TrackStatus::Deleted => {}
+            }
         }
     }
 }
@@ -98,19 +97,19 @@ pub(super) fn row(
     out: &mut TrackRows,
     rec: Option<&mut Recorded>,
     sensor: SensorId,
-    track: &Track,
+    track: TrackSnapshot,
 ) {
     if let Some(rec) = rec {
         rec.push(sensor, track);
         return;
     }
-    let reason = track.deletion().map_or("", reason_name);
+    let reason = track.deletion.map_or("", reason_name);
     let mu = track.mode_probabilities();
-    let p = Point::new(track.time(), track.estimate())
-        .of_track(sensor.0, track.id().0, status_name(track.status()), reason)
+    let p = Point::new(track.time, &track.estimate)
+        .of_track(sensor.0, track.id.0, status_name(track.status), reason)
         .modes(mu.as_ref().map(|m| m.as_slice()))
         .noise(track.noise_estimate())
         .turn_rate(track.turn_rate())
-        .score(track.score());
+        .score(track.score);
     out.push(&p);
 }

@@ -5,8 +5,8 @@ use argus_imm::ImmEstimate;
 use argus_score::{ScoreConfig, Scorer, TrackHistory, TrackRow, TruthPath, TruthSample};
 use argus_sim::{ChaCha8Rng, Rotation, run_rng};
 use argus_tracker::{
-    AssociationConfig, EstimatorConfig, Plot, RotationDirection, SensorConfig, TrackStatus,
-    Tracker, TrackerConfig,
+    AssociationConfig, EstimatorConfig, EstimatorState, Plot, RotationDirection, SensorConfig,
+    TrackStatus, Tracker, TrackerConfig,
 };
 use serde::{Deserialize, Serialize};
 
@@ -475,13 +475,14 @@ pub(crate) type AircraftState = argus_imm::AircraftEstimate<2, 3>;
 
 /// One track's rows as the tracker gave them: its history, its combined estimate per row
 /// and, for the two-mode IMM ([`EstimatorConfig::ImmCv2`]), its mode-conditioned state
-/// per row ([`argus_tracker::Track::imm_estimate`]; `None` for the other estimators).
+/// per row ([`argus_tracker::EstimatorState::Imm`] of [`argus_tracker::Track::state`]; `None`
+/// for the other estimators).
 pub(crate) struct TrackRecord {
     pub(crate) history: TrackHistory,
     pub(crate) estimates: Vec<argus_core_math::Gaussian<4>>,
     pub(crate) imm: Vec<Option<ImmEstimate<4, 2>>>,
     /// For the aircraft IMM ([`EstimatorConfig::Aircraft`]), its state per row
-    /// ([`argus_tracker::Track::aircraft_estimate`]; `None` for the other estimators).
+    /// ([`argus_tracker::EstimatorState::Aircraft`]; `None` for the other estimators).
     pub(crate) aircraft: Vec<Option<Box<AircraftState>>>,
 }
 
@@ -515,8 +516,14 @@ pub(crate) fn track_with_estimates(
                 (
                     *tr.estimate(),
                     (
-                        tr.imm_estimate().copied(),
-                        tr.aircraft_estimate().map(|a| Box::new(*a)),
+                        match tr.state() {
+                            EstimatorState::Imm(imm) => Some(*imm),
+                            _ => None,
+                        },
+                        match tr.state() {
+                            EstimatorState::Aircraft(a) => Some(a.clone()),
+                            _ => None,
+                        },
                     ),
                 ),
             ));

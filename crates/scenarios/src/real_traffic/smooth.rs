@@ -9,7 +9,7 @@
 //! smoother of the recorded forward pass (with JPDA: of the PDA posteriors' moments), as
 //! `argus track --smooth` does. The two-mode IMM tracks (`gnn_imm`, `jpda_imm`) are
 //! smoothed by `argus_imm`'s IMM smoother over their recorded mode-conditioned states
-//! ([`argus_tracker::Track::imm_estimate`] per row): the forward record (every mode's
+//! ([`argus_tracker::EstimatorState::Imm`] per row): the forward record (every mode's
 //! estimate predicted through every model with its cross covariance, `ln μ̄`) is
 //! recomputed from the row before's mode estimates over the rows' time difference by an
 //! IMM built as the tracker builds its own, so with GNN it is the IMM's own forward pass
@@ -19,7 +19,7 @@
 //! revolution (a sector is one revolution's eighth), so no forward step falls between two
 //! rows. The aircraft-IMM tracks (`*_aircraft`) are smoothed the same way by `argus_imm`'s
 //! aircraft-IMM smoother over their recorded states
-//! ([`argus_tracker::Track::aircraft_estimate`] per row; the record recomputed from the
+//! ([`argus_tracker::EstimatorState::Aircraft`] per row; the record recomputed from the
 //! row before's modes by the IMM of the tuning, `AircraftTuning::build`, as the tracker
 //! builds it), as `argus track --smooth` does.
 //!

@@ -101,6 +101,7 @@ impl Tracker {
                 score,
                 peak_score: score,
                 state,
+                plot: self.point_plots.get(j).copied(),
                 looks: Vec::new(),
                 revision: 0,
             };

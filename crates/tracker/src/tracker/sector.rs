@@ -27,6 +27,8 @@ pub(crate) struct SectorState {
     /// The open sector's plots so far, and their times.
     points: Vec<crate::plot::ScanPoint>,
     times: Vec<f64>,
+    /// The open sector's plots as given (parallel to `points`).
+    plots: Vec<Plot>,
 }
 
 /// A track's part in one sector.
@@ -55,6 +57,7 @@ impl SectorState {
                     index: None,
                     points: Vec::new(),
                     times: Vec::new(),
+                    plots: Vec::new(),
                 })
             })
             .collect()
@@ -95,6 +98,54 @@ impl Tracker {
         self.sectors
             .iter()
             .position(|ss| self.sensors[ss.sensor].id == id)
+    }
+
+    /// Makes sensor `id` a rotating radar with `rotation` (or replaces its rotation), as if
+    /// the configuration had said so; the other sensors' sectors are kept as they are.
+    /// Only before the sensor's first plot: the caller ([`crate::Session`]) checks that
+    /// for a sensor configured synchronous, this refuses a rotating sensor whose sectors
+    /// have started.
+    ///
+    /// # Errors
+    /// [`TrackerError::LateRotation`] for an unknown sensor or a started one;
+    /// [`TrackerError::InvalidConfig`] for a bad rotation or one the estimator cannot take
+    /// (the multi-IMM). The tracker is then unchanged.
+    pub(crate) fn set_rotation(
+        &mut self,
+        id: SensorId,
+        rotation: Rotation,
+    ) -> Result<(), TrackerError> {
+        let Some(s) = self.sensors.iter().position(|m| m.id == id) else {
+            return Err(TrackerError::LateRotation {
+                sensor: id,
+                reason: "the configuration has no such sensor",
+            });
+        };
+        if self
+            .sectors
+            .iter()
+            .any(|ss| ss.sensor == s && ss.index.is_some())
+        {
+            return Err(TrackerError::LateRotation {
+                sensor: id,
+                reason: "the sensor's sectors have started (its first plot was taken)",
+            });
+        }
+        let mut config = self.config.clone();
+        config.sensors[s].rotation = Some(rotation);
+        config.validate()?;
+        self.config = config;
+        let mut old = std::mem::take(&mut self.sectors);
+        self.sectors = SectorState::for_config(&self.config)
+            .into_iter()
+            .map(
+                |fresh| match old.iter().position(|ss| ss.sensor == fresh.sensor) {
+                    Some(k) if fresh.sensor != s => old.swap_remove(k),
+                    _ => fresh,
+                },
+            )
+            .collect();
+        Ok(())
     }
 
     /// Refuses a synchronous scan of a rotating sensor, or one that would come after a
@@ -143,6 +194,7 @@ impl Tracker {
             let p = self.sensors[s].point(start + n, plot, cartesian_ok)?;
             self.sectors[i].points.push(p);
             self.sectors[i].times.push(t);
+            self.sectors[i].plots.push(*plot);
         }
         self.latest = Some(self.latest.map_or(t, |l| l.max(t)));
         Ok(())
@@ -242,8 +294,10 @@ impl Tracker {
         let ss = &mut self.sectors[i];
         std::mem::swap(&mut self.points, &mut ss.points);
         std::mem::swap(&mut self.point_times, &mut ss.times);
+        std::mem::swap(&mut self.point_plots, &mut ss.plots);
         ss.points.clear();
         ss.times.clear();
+        ss.plots.clear();
         let (s, rot) = (ss.sensor, ss.rotation);
         self.scan_sensor = s;
         let sensor = self.sensors[s];
@@ -327,10 +381,12 @@ impl Tracker {
             };
             let Some(pred) = self.predicted[k].take() else {
                 track.delete(DeletionReason::FilterFailure);
+                track.plot = None;
                 report.deleted.push(track.id);
                 continue;
             };
             let hit = self.assigned[k];
+            let plot = hit.map(|j| self.point_plots[j]);
             let weights = &self.jpda[k];
             if hit.is_none() && weights.is_empty() && !closes {
                 // Carried: the state is as it was before the look prediction.
@@ -386,7 +442,7 @@ impl Tracker {
                 track,
                 &mut report,
                 posterior,
-                hit.is_some(),
+                plot,
                 self.jpda_dl[k],
                 time,
             ) {
