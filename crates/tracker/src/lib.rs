@@ -202,6 +202,7 @@ mod rotation;
 mod state;
 mod track;
 mod tracker;
+mod tuning;
 mod two_mode;
 
 /// The aircraft IMM's tuning and mixing rule (from `argus-imm`), re-exported for
@@ -218,4 +219,5 @@ pub use rotation::{Rotation, RotationDirection};
 pub use state::{MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};
+pub use tuning::{TUNABLES, Tunable};
 pub use two_mode::{TwoModeImm, two_mode_imm};
