@@ -1,4 +1,5 @@
 //! The tunable-field table and `TrackerConfig::set`.
+#![allow(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use argus_tracker::{
     AircraftTuning, AssociationConfig, AssociationField, ConfigField, EstimatorConfig,
@@ -111,7 +112,11 @@ fn is_aircraft(field: ConfigField) -> bool {
 #[test]
 fn setting_a_field_changes_exactly_that_field() {
     for t in TUNABLES {
-        let before = config(if is_aircraft(t.field) { aircraft() } else { imm() });
+        let before = config(if is_aircraft(t.field) {
+            aircraft()
+        } else {
+            imm()
+        });
         // A value inside the range, neither end, and (for the integers) whole.
         let v = (t.min + 0.37 * (t.max - t.min)).max(t.min);
         let v = if matches!(
@@ -137,8 +142,11 @@ fn integer_fields_take_the_integer_part() {
     let mut c = config(imm());
     c.set(ConfigField::ConfirmM, 2.9).expect("in range");
     assert_eq!(c.confirm_m, 2);
-    c.set(ConfigField::Association(AssociationField::MaxExactEvents), 50.5)
-        .expect("in range");
+    c.set(
+        ConfigField::Association(AssociationField::MaxExactEvents),
+        50.5,
+    )
+    .expect("in range");
     assert!(matches!(
         c.association,
         AssociationConfig::Jpda {
@@ -151,7 +159,11 @@ fn integer_fields_take_the_integer_part() {
 #[test]
 fn out_of_range_values_are_refused_and_change_nothing() {
     for t in TUNABLES {
-        let before = config(if is_aircraft(t.field) { aircraft() } else { imm() });
+        let before = config(if is_aircraft(t.field) {
+            aircraft()
+        } else {
+            imm()
+        });
         for v in [t.max * 2.0 + 1.0, t.min - 1.0, f64::NAN] {
             let mut c = before.clone();
             let e = c.set(t.field, v).expect_err("out of range");
@@ -175,7 +187,10 @@ fn a_field_the_configuration_lacks_is_refused() {
         (ConfigField::Estimator(EstimatorField::PStay), 0.9),
         (ConfigField::Estimator(EstimatorField::CtSigmaA), 1.0),
         (ConfigField::Score(ScoreField::DeleteDrop), 5.0),
-        (ConfigField::Association(AssociationField::MaxExactEvents), 5.0),
+        (
+            ConfigField::Association(AssociationField::MaxExactEvents),
+            5.0,
+        ),
         (ConfigField::GateProbability, 0.5),
     ] {
         let e = kf.set(field, v).expect_err("no such field here");
@@ -203,5 +218,8 @@ fn the_table_has_one_entry_per_field_with_a_range_and_a_help() {
         assert_eq!(Tunable::of(t.field), Some(t));
     }
     assert_eq!(Tunable::of(ConfigField::GateProbability), None);
-    assert_eq!(Tunable::SIGMA_A.help, "KF tracks' white-acceleration σ (m/s²)");
+    assert_eq!(
+        Tunable::SIGMA_A.help,
+        "KF tracks' white-acceleration σ (m/s²)"
+    );
 }
