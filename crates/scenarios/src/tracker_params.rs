@@ -241,3 +241,125 @@ pub(crate) fn aircraft(
     apply_all(params, p, &mut c)?;
     Ok(c.estimator)
 }
+
+#[cfg(test)]
+mod tests {
+    use argus_tracker::{ConfigField, EstimatorField, SensorId, TUNABLES};
+
+    use super::*;
+
+    /// Every shared declaration.
+    const ALL: [TrackerParam; 17] = [
+        KF_SIGMA_A,
+        IMM_SIGMA_LOW,
+        IMM_SIGMA_HIGH,
+        IMM_P_STAY,
+        AC_CV_SIGMA_LOW,
+        AC_CV_SIGMA_HIGH,
+        AC_CT_SIGMA_A,
+        AC_CT_SIGMA_OMEGA_DEG,
+        MAX_MISSES,
+        FALSE_CONFIRM,
+        DELETE_DROP,
+        NEW_TARGET_DENSITY,
+        JPDA_MAX_EVENTS,
+        CONFIRM_M,
+        CONFIRM_N,
+        MAX_SPEED,
+        SECTOR_FRACTION,
+    ];
+
+    fn specs(name: &str) -> Vec<ParamSpec> {
+        crate::registry::find(name)
+            .map(|s| s.params())
+            .unwrap_or_default()
+    }
+
+    #[test]
+    fn the_tables_ranges_and_helps_are_the_scenarios_specs() {
+        let (surv, real) = (specs("surveillance"), specs("real-traffic"));
+        assert!(!surv.is_empty() && !real.is_empty());
+        let mut from_table = 0;
+        for t in ALL {
+            assert!(TUNABLES.contains(&t.tunable), "{}", t.key);
+            for s in surv.iter().chain(&real).filter(|s| s.key == t.key) {
+                if t.range.is_none() && t.help.is_none() && s.help == t.tunable.help {
+                    assert_eq!(s.min.to_bits(), t.tunable.min.to_bits(), "{}", t.key);
+                    assert_eq!(s.max.to_bits(), t.tunable.max.to_bits(), "{}", t.key);
+                    from_table += 1;
+                }
+            }
+        }
+        // Those taken whole from the tracker's table in at least one scenario.
+        assert!(from_table >= 14, "{from_table}");
+        let spec = |v: &[ParamSpec], key| v.iter().find(|s| s.key == key).copied();
+        assert_eq!(
+            spec(&real, "confirm_n"),
+            Some(ParamSpec::new(
+                "confirm_n",
+                4.0,
+                2.0,
+                20.0,
+                "... in the first N opportunities"
+            ))
+        );
+        assert_eq!(
+            spec(&surv, "kf_sigma_a"),
+            Some(ParamSpec::new(
+                "kf_sigma_a",
+                3.0,
+                0.0,
+                100.0,
+                "KF tracks' white-acceleration σ (m/s²)"
+            ))
+        );
+        assert_eq!(
+            spec(&real, "kf_sigma_a").map(|s| s.default.to_bits()),
+            Some(5.0_f64.to_bits())
+        );
+        // The scenario's own key spelling.
+        assert!(spec(&surv, "default_max_misses").is_some());
+        assert!(spec(&surv, "max_misses").is_none());
+    }
+
+    #[test]
+    fn applying_a_parameter_sets_exactly_its_field() -> Result<(), ScenarioError> {
+        let specs = [AC_CT_SIGMA_OMEGA_DEG.spec(0.2), CONFIRM_M.spec(3.0)];
+        let p = Params::from_settings(
+            &specs,
+            &[
+                "ac_ct_sigma_omega_deg=2".to_owned(),
+                "confirm_m=2".to_owned(),
+            ],
+        )?;
+        let base = TrackerConfig::new(vec![SensorId(0)]);
+        let est = aircraft(&p, &base, &[AC_CT_SIGMA_OMEGA_DEG])?;
+        let tuning = AircraftTuning {
+            ct_sigma_omega: 2.0_f64.to_radians(),
+            ..AircraftTuning::default()
+        };
+        assert_eq!(est, EstimatorConfig::Aircraft { tuning });
+        let mut c = base.clone();
+        CONFIRM_M.apply(&p, &mut c)?;
+        assert_eq!(
+            c,
+            TrackerConfig {
+                confirm_m: 2,
+                ..base.clone()
+            }
+        );
+        // Refused by the tracker (no IMM configured): a typed error naming the field.
+        let mut c = base.clone();
+        let specs = [IMM_P_STAY.spec(0.95)];
+        let p = Params::from_settings(&specs, &[])?;
+        match IMM_P_STAY.apply(&p, &mut c) {
+            Err(ScenarioError::Tracker(argus_tracker::TrackerError::InvalidConfig {
+                field,
+                ..
+            })) => assert_eq!(field, ConfigField::Estimator(EstimatorField::PStay)),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(c, base);
+        Ok(())
+    }
+}
