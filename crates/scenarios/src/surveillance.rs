@@ -55,11 +55,28 @@ use crate::error::ScenarioError;
 use crate::params::{ParamSpec, Params};
 use crate::report::Report;
 use crate::scenario::Scenario;
+use crate::tracker_params::{self as tp, TrackerParam};
 use setup::{Setup, SurvRun};
 use sums::SurvSums;
 
 /// The `surveillance` scenario.
 pub(crate) struct Surveillance;
+
+/// The default configuration's aircraft IMM: quiet CV mode σ_a.
+const AC_CV_SIGMA_LOW: TrackerParam = tp::AC_CV_SIGMA_LOW
+    .range(1e-3, 100.0)
+    .help("default: aircraft IMM's quiet CV mode σ_a (m/s²)");
+/// The default configuration's aircraft IMM: manoeuvre CV mode σ_a.
+const AC_CV_SIGMA_HIGH: TrackerParam = tp::AC_CV_SIGMA_HIGH
+    .range(1e-3, 100.0)
+    .help("default: aircraft IMM's manoeuvre CV mode σ_a (m/s²)");
+/// The default configuration's aircraft IMM: turn-rate random walk.
+const AC_CT_SIGMA_OMEGA_DEG: TrackerParam =
+    tp::AC_CT_SIGMA_OMEGA_DEG.help("default: aircraft IMM's turn-rate random walk σ_ω (deg/s²)");
+/// The default configuration's deletion after misses.
+const DEFAULT_MAX_MISSES: TrackerParam = tp::MAX_MISSES
+    .key("default_max_misses")
+    .help("default: a confirmed track is deleted after this many misses in a row");
 
 impl Scenario for Surveillance {
     fn name(&self) -> &'static str {
@@ -138,90 +155,24 @@ impl Scenario for Surveillance {
                 1e5,
                 "scans before this time (s) are left out of the time averages",
             ),
-            ParamSpec::new(
-                "kf_sigma_a",
-                3.0,
-                0.0,
-                100.0,
-                "KF tracks' white-acceleration σ (m/s²)",
-            ),
-            ParamSpec::new(
-                "imm_sigma_low",
-                0.5,
-                0.0,
-                100.0,
-                "IMM quiet mode's white-acceleration σ (m/s²)",
-            ),
-            ParamSpec::new(
-                "imm_sigma_high",
-                10.0,
-                0.0,
-                100.0,
-                "IMM manoeuvre mode's white-acceleration σ (m/s²)",
-            ),
-            ParamSpec::new(
-                "imm_p_stay",
-                0.95,
-                1e-3,
-                0.999,
-                "IMM probability of staying in a mode per scan",
-            ),
-            ParamSpec::new(
-                "ac_cv_sigma_low",
-                0.3,
-                1e-3,
-                100.0,
-                "default: aircraft IMM's quiet CV mode σ_a (m/s²)",
-            ),
-            ParamSpec::new(
-                "ac_cv_sigma_high",
-                8.0,
-                1e-3,
-                100.0,
-                "default: aircraft IMM's manoeuvre CV mode σ_a (m/s²)",
-            ),
-            ParamSpec::new(
-                "ac_ct_sigma_omega_deg",
-                0.5,
-                1e-6,
-                10.0,
-                "default: aircraft IMM's turn-rate random walk σ_ω (deg/s²)",
-            ),
-            ParamSpec::new(
-                "default_max_misses",
-                4.0,
-                1.0,
-                100.0,
-                "default: a confirmed track is deleted after this many misses in a row",
-            ),
-            ParamSpec::new(
-                "false_confirm",
-                1e-4,
-                1e-12,
-                0.4,
-                "default: track score's probability of confirming a false track",
-            ),
-            ParamSpec::new(
-                "delete_drop",
-                9.0,
-                0.1,
-                100.0,
-                "default: a confirmed track is deleted this far below its peak score",
-            ),
-            ParamSpec::new(
-                "new_target_density",
-                1e-11,
-                1e-20,
-                1e-3,
-                "default: track score's new targets per m² per scan",
-            ),
-            ParamSpec::new(
-                "jpda_max_events",
-                1000.0,
-                1.0,
-                1e7,
-                "JPDA: largest cluster enumerated exactly (joint events)",
-            ),
+            tp::KF_SIGMA_A.spec(3.0),
+            tp::IMM_SIGMA_LOW.spec(0.5),
+            tp::IMM_SIGMA_HIGH.spec(10.0),
+            tp::IMM_P_STAY.spec(0.95),
+            AC_CV_SIGMA_LOW.spec(0.3),
+            AC_CV_SIGMA_HIGH.spec(8.0),
+            AC_CT_SIGMA_OMEGA_DEG.spec(0.5),
+            DEFAULT_MAX_MISSES.spec(4.0),
+            tp::FALSE_CONFIRM
+                .help("default: track score's probability of confirming a false track")
+                .spec(1e-4),
+            tp::DELETE_DROP
+                .help("default: a confirmed track is deleted this far below its peak score")
+                .spec(9.0),
+            tp::NEW_TARGET_DENSITY
+                .help("default: track score's new targets per m² per scan")
+                .spec(1e-11),
+            tp::JPDA_MAX_EVENTS.spec(1000.0),
             ParamSpec::new(
                 "truth_seed",
                 1.0,

@@ -100,6 +100,10 @@ pub enum EstimatorField {
     Clip,
     /// `cv_sigma_a` of [`crate::EstimatorConfig::Aircraft`]'s tuning.
     CvSigmaA,
+    /// `cv_sigma_a[0]` of the aircraft tuning: its quiet CV mode's σ_a.
+    CvSigmaALow,
+    /// `cv_sigma_a[1]` of the aircraft tuning: its manoeuvre CV mode's σ_a.
+    CvSigmaAHigh,
     /// `ct_sigma_a` of the aircraft tuning.
     CtSigmaA,
     /// `ct_sigma_omega` of the aircraft tuning.
@@ -170,6 +174,8 @@ impl ConfigField {
                 EstimatorField::GridSpacing => "estimator.grid_spacing",
                 EstimatorField::Clip => "estimator.clip",
                 EstimatorField::CvSigmaA => "estimator.tuning.cv_sigma_a",
+                EstimatorField::CvSigmaALow => "estimator.tuning.cv_sigma_a[0]",
+                EstimatorField::CvSigmaAHigh => "estimator.tuning.cv_sigma_a[1]",
                 EstimatorField::CtSigmaA => "estimator.tuning.ct_sigma_a",
                 EstimatorField::CtSigmaOmega => "estimator.tuning.ct_sigma_omega",
                 EstimatorField::Markov => "estimator.tuning.markov",

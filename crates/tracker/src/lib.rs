@@ -247,6 +247,7 @@ mod session;
 mod state;
 mod track;
 mod tracker;
+mod tuning;
 mod two_mode;
 
 /// The aircraft IMM's tuning and mixing rule (from `argus-imm`), re-exported for
@@ -264,4 +265,5 @@ pub use session::{Concluded, Input, Output, Session, SessionError, TrackEvent, T
 pub use state::{EstimatorState, MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};
+pub use tuning::{TUNABLES, Tunable};
 pub use two_mode::{TwoModeImm, two_mode_imm};

@@ -2,6 +2,7 @@
 //! scoring, each settable with `--set`.
 
 use crate::params::ParamSpec;
+use crate::tracker_params as tp;
 
 /// Paris CDG's aerodrome reference point (AIP France, AD 2 LFPG: 49°00′35″ N,
 /// 002°32′52″ E, 392 ft).
@@ -59,63 +60,17 @@ pub(super) fn params() -> Vec<ParamSpec> {
         ),
         ParamSpec::new("min_range", 500.0, 0.0, 1e5, "radar minimum range (m)"),
         ParamSpec::new("max_range", 150_000.0, 1e3, 1e6, "radar maximum range (m)"),
-        ParamSpec::new(
-            "sector_fraction",
-            0.125,
-            1e-3,
-            1.0,
-            "tracker sector: this fraction of a revolution",
-        ),
-        ParamSpec::new(
-            "kf_sigma_a",
-            5.0,
-            0.0,
-            100.0,
-            "KF tracks' white-acceleration σ (m/s²)",
-        ),
-        ParamSpec::new(
-            "imm_sigma_low",
-            0.5,
-            0.0,
-            100.0,
-            "IMM quiet mode's white-acceleration σ (m/s²)",
-        ),
-        ParamSpec::new(
-            "imm_sigma_high",
-            10.0,
-            0.0,
-            100.0,
-            "IMM manoeuvre mode's white-acceleration σ (m/s²)",
-        ),
-        ParamSpec::new(
-            "imm_p_stay",
-            0.95,
-            1e-3,
-            0.999,
-            "IMM probability of staying in a mode per revolution",
-        ),
-        ParamSpec::new("confirm_m", 3.0, 1.0, 20.0, "confirmation: M hits ..."),
-        ParamSpec::new(
-            "confirm_n",
-            4.0,
-            2.0,
-            20.0,
-            "... in the first N opportunities",
-        ),
-        ParamSpec::new(
-            "max_misses",
-            4.0,
-            1.0,
-            100.0,
-            "a confirmed track is deleted after this many consecutive misses",
-        ),
-        ParamSpec::new(
-            "max_speed",
-            350.0,
-            1.0,
-            2000.0,
-            "two-point initiation: the fastest aircraft (m/s)",
-        ),
+        tp::SECTOR_FRACTION.spec(0.125),
+        tp::KF_SIGMA_A.spec(5.0),
+        tp::IMM_SIGMA_LOW.spec(0.5),
+        tp::IMM_SIGMA_HIGH.spec(10.0),
+        tp::IMM_P_STAY
+            .help("IMM probability of staying in a mode per revolution")
+            .spec(0.95),
+        tp::CONFIRM_M.spec(3.0),
+        tp::CONFIRM_N.spec(4.0),
+        tp::MAX_MISSES.spec(4.0),
+        tp::MAX_SPEED.spec(350.0),
         ParamSpec::new(
             "init_revolutions",
             1.4,
@@ -123,34 +78,10 @@ pub(super) fn params() -> Vec<ParamSpec> {
             10.0,
             "two-point initiation: an unused plot waits this many revolutions for its pair",
         ),
-        ParamSpec::new(
-            "ac_cv_sigma_low",
-            0.3,
-            0.0,
-            100.0,
-            "aircraft IMM: quiet CV mode's σ_a (m/s²)",
-        ),
-        ParamSpec::new(
-            "ac_cv_sigma_high",
-            2.0,
-            0.0,
-            100.0,
-            "aircraft IMM: manoeuvre CV mode's σ_a (m/s²)",
-        ),
-        ParamSpec::new(
-            "ac_ct_sigma_a",
-            0.5,
-            0.0,
-            100.0,
-            "aircraft IMM: CT mode's σ_a (m/s²)",
-        ),
-        ParamSpec::new(
-            "ac_ct_sigma_omega_deg",
-            0.2,
-            1e-6,
-            10.0,
-            "aircraft IMM: CT mode's turn-rate random walk σ_ω (deg/s²)",
-        ),
+        tp::AC_CV_SIGMA_LOW.spec(0.3),
+        tp::AC_CV_SIGMA_HIGH.spec(2.0),
+        tp::AC_CT_SIGMA_A.spec(0.5),
+        tp::AC_CT_SIGMA_OMEGA_DEG.spec(0.2),
         ParamSpec::new(
             "score",
             0.0,
@@ -158,34 +89,12 @@ pub(super) fn params() -> Vec<ParamSpec> {
             1.0,
             "1: confirm and delete by track score (SPRT, with the clutter density), 0: M of N",
         ),
-        ParamSpec::new(
-            "false_confirm",
-            1e-4,
-            1e-12,
-            0.4,
-            "track score: probability of confirming a false track",
-        ),
-        ParamSpec::new(
-            "delete_drop",
-            9.0,
-            0.1,
-            100.0,
-            "track score: a confirmed track is deleted this far below its peak score",
-        ),
-        ParamSpec::new(
-            "new_target_density",
-            1e-11,
-            1e-20,
-            1e-3,
-            "track score: new targets per m² per revolution",
-        ),
-        ParamSpec::new(
-            "jpda_max_events",
-            1000.0,
-            1.0,
-            1e7,
-            "JPDA: largest cluster enumerated exactly (joint events)",
-        ),
+        tp::FALSE_CONFIRM.spec(1e-4),
+        tp::DELETE_DROP.spec(9.0),
+        tp::NEW_TARGET_DENSITY
+            .help("track score: new targets per m² per revolution")
+            .spec(1e-11),
+        tp::JPDA_MAX_EVENTS.spec(1000.0),
         ParamSpec::new("score_step", 5.0, 0.1, 60.0, "scoring grid step (s)"),
         ParamSpec::new(
             "cutoff",

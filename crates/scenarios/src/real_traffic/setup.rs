@@ -395,24 +395,46 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
     )
     .with_rotation(rotation);
     let mut base = TrackerConfig::new(vec![sensor]);
-    base.sigma_a = p.get("kf_sigma_a")?;
-    base.sector_fraction = p.get("sector_fraction")?;
-    base.confirm_m = p.get("confirm_m")? as u32;
-    base.confirm_n = p.get("confirm_n")? as u32;
-    base.max_misses = p.get("max_misses")? as u32;
+    tracker_params::apply_all(
+        &[
+            tracker_params::KF_SIGMA_A,
+            tracker_params::SECTOR_FRACTION,
+            tracker_params::CONFIRM_M,
+            tracker_params::CONFIRM_N,
+            tracker_params::MAX_MISSES,
+        ],
+        p,
+        &mut base,
+    )?;
     base.max_initiation_interval = p.get("init_revolutions")? * radar.period;
-    base.max_speed = p.get("max_speed")?;
+    tracker_params::MAX_SPEED.apply(p, &mut base)?;
     if p.get("score")? >= 0.5 {
-        base.score = Some(tracker_params::track_score(
+        tracker_params::set_track_score(
             p,
+            &mut base,
             radar.p_detection,
             radar.clutter_density().max(1e-12),
-        )?);
+        )?;
     }
-    let imm = tracker_params::imm_cv2(p)?;
+    let imm = tracker_params::imm_cv2(p, &base)?;
     // The tracker's λ is per m² per scan (here: per revolution); a floor keeps JPDA's
     // weights finite without clutter.
-    let jpda = tracker_params::jpda(p, radar.p_detection, radar.clutter_density().max(1e-12))?;
+    let jpda = tracker_params::jpda(
+        p,
+        &base,
+        radar.p_detection,
+        radar.clutter_density().max(1e-12),
+    )?;
+    let aircraft = tracker_params::aircraft(
+        p,
+        &base,
+        &[
+            tracker_params::AC_CV_SIGMA_LOW,
+            tracker_params::AC_CV_SIGMA_HIGH,
+            tracker_params::AC_CT_SIGMA_A,
+            tracker_params::AC_CT_SIGMA_OMEGA_DEG,
+        ],
+    )?;
     let with = |estimator, association| TrackerConfig {
         estimator,
         association,
@@ -437,21 +459,11 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
         },
         Named {
             name: "gnn_aircraft",
-            config: with(
-                EstimatorConfig::Aircraft {
-                    tuning: aircraft_tuning(p)?,
-                },
-                AssociationConfig::Gnn,
-            ),
+            config: with(aircraft, AssociationConfig::Gnn),
         },
         Named {
             name: "jpda_aircraft",
-            config: with(
-                EstimatorConfig::Aircraft {
-                    tuning: aircraft_tuning(p)?,
-                },
-                jpda,
-            ),
+            config: with(aircraft, jpda),
         },
     ];
     for n in &out {
@@ -589,17 +601,6 @@ fn covered_truth(
         }
     }
     Ok(out)
-}
-
-/// The aircraft IMM's tuning: [`argus_imm::AircraftTuning::default`] with the scenario's
-/// noise parameters.
-fn aircraft_tuning(p: &Params) -> Result<argus_imm::AircraftTuning<2, 3>, ScenarioError> {
-    Ok(argus_imm::AircraftTuning {
-        cv_sigma_a: [p.get("ac_cv_sigma_low")?, p.get("ac_cv_sigma_high")?],
-        ct_sigma_a: p.get("ac_ct_sigma_a")?,
-        ct_sigma_omega: p.get("ac_ct_sigma_omega_deg")?.to_radians(),
-        ..argus_imm::AircraftTuning::default()
-    })
 }
 
 /// Each path followed for [`EXTENSION`] s past its last sample at its last velocity, a

@@ -4,7 +4,6 @@
 use std::f64::consts::{PI, TAU};
 
 use argus_core_math::Vector;
-use argus_imm::AircraftTuning;
 use argus_sensors::{ConversionMethod, Measurement, convert_polar};
 use argus_sim::{
     ChaCha8Rng, Detection, Gospa, KinematicState, Ospa, Schedule, Segment, SensorId, SensorKind,
@@ -16,6 +15,7 @@ use argus_tracker::{
 use rand_distr::{Distribution, OpenClosed01, Poisson, StandardUniform};
 use serde::{Deserialize, Serialize};
 
+use super::{AC_CT_SIGMA_OMEGA_DEG, AC_CV_SIGMA_HIGH, AC_CV_SIGMA_LOW, DEFAULT_MAX_MISSES};
 use crate::error::{ParamProblem, ScenarioError};
 use crate::params::Params;
 use crate::tracker_params;
@@ -161,13 +161,13 @@ impl Setup {
         let order = p.get("order")?;
         let area = PI * range * range;
         let mut base = TrackerConfig::new(vec![argus_tracker::SensorId(RADAR)]);
-        base.sigma_a = p.get("kf_sigma_a")?;
+        tracker_params::KF_SIGMA_A.apply(p, &mut base)?;
         // The tracker's defaults assume ≤ 350 m/s and 5 s scans: widen them with the
         // scenario (fastest aircraft + 20 %, unused plots kept for 2.4 scans).
         base.max_speed = base.max_speed.max(1.2 * speed.1);
         base.max_initiation_interval = 2.4 * period;
-        let imm = tracker_params::imm_cv2(p)?;
-        let jpda = tracker_params::jpda(p, p_d, clutter.max(MIN_CLUTTER_PER_SCAN) / area)?;
+        let imm = tracker_params::imm_cv2(p, &base)?;
+        let jpda = tracker_params::jpda(p, &base, p_d, clutter.max(MIN_CLUTTER_PER_SCAN) / area)?;
         let default = default_config(
             p,
             &base,
@@ -443,23 +443,23 @@ fn default_config(
     p_d: f64,
     clutter_density: f64,
 ) -> Result<TrackerConfig, ScenarioError> {
-    let tuning = AircraftTuning {
-        cv_sigma_a: [p.get("ac_cv_sigma_low")?, p.get("ac_cv_sigma_high")?],
-        ct_sigma_omega: p.get("ac_ct_sigma_omega_deg")?.to_radians(),
-        ..AircraftTuning::default()
-    };
     let sensor = SensorConfig::polar(
         argus_tracker::SensorId(RADAR),
         [0.0, 0.0],
         sigma_r,
         sigma_az,
     );
-    Ok(TrackerConfig {
+    let mut config = TrackerConfig {
         sensors: vec![sensor],
-        estimator: EstimatorConfig::Aircraft { tuning },
         association: jpda,
-        max_misses: p.get("default_max_misses")? as u32,
-        score: Some(tracker_params::track_score(p, p_d, clutter_density)?),
         ..base.clone()
-    })
+    };
+    config.estimator = tracker_params::aircraft(
+        p,
+        &config,
+        &[AC_CV_SIGMA_LOW, AC_CV_SIGMA_HIGH, AC_CT_SIGMA_OMEGA_DEG],
+    )?;
+    DEFAULT_MAX_MISSES.apply(p, &mut config)?;
+    tracker_params::set_track_score(p, &mut config, p_d, clutter_density)?;
+    Ok(config)
 }
