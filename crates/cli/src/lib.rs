@@ -21,7 +21,6 @@ mod campaign_plan;
 mod campaign_scan;
 mod convert;
 mod error;
-mod estimator;
 mod merge_error;
 mod output;
 mod plotfile;

@@ -199,6 +199,8 @@ mod management;
 mod pda;
 mod plot;
 mod rotation;
+pub mod single;
+pub mod smooth;
 mod state;
 mod track;
 mod tracker;
@@ -215,6 +217,8 @@ pub use config::{
 pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
 pub use rotation::{Rotation, RotationDirection};
+pub use single::{EstimatorSpec, SingleError, SingleTarget};
+pub use smooth::Smoothing;
 pub use state::{MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};

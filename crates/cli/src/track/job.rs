@@ -4,9 +4,11 @@
 
 use std::path::Path;
 
+use argus_tracker::single::EstimatorSpec;
+
 use super::geo::{self, Reference};
 use super::schema::{self, Source};
-use super::spec::{self, Estimator, Sensor};
+use super::spec::{self, Sensor};
 use super::tracker_config::{self, MultiTarget};
 use crate::error::CliError;
 use crate::plotfile::FilePlot;
@@ -17,7 +19,7 @@ pub(super) enum Job {
     /// One target: `estimator` over every plot of the file, in order.
     Single {
         sensors: Vec<Sensor>,
-        estimator: Estimator,
+        estimator: EstimatorSpec,
     },
     /// The multi-target tracker.
     Multi(MultiTarget),

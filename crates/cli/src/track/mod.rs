@@ -5,15 +5,14 @@
 //! estimator checked once with every default filled in ([`spec`]); with a `[tracker]`
 //! table that is mapped onto the tracker's configuration ([`tracker_config`], whose
 //! errors [`errors`] maps back to the file's keys). The [`job`] is then one target
-//! ([`single`], [`single_imm`], [`single_aircraft`], started by the one two-point start
-//! of [`start`] or, for the aircraft IMM, its own) or the
-//! multi-target tracker ([`multi`]); both write their rows through [`rows`].
+//! ([`single`]: `argus_tracker::single`'s engine, its errors mapped back to the file's
+//! lines and keys by [`start`]) or the multi-target tracker ([`multi`]); both write their
+//! rows through [`rows`].
 
 mod errors;
 mod feed;
 mod geo;
 mod job;
-mod mode_record;
 mod multi;
 mod multi_files;
 mod multi_smooth;
@@ -21,13 +20,7 @@ mod names;
 mod rows;
 mod schema;
 mod single;
-mod single_aircraft;
-mod single_dim;
-mod single_imm;
-mod single_smooth;
 mod smooth;
-mod smooth_aircraft;
-mod smooth_imm;
 mod source;
 mod spec;
 mod start;

@@ -5,6 +5,7 @@
 
 use std::ops::Range;
 
+use argus_tracker::single::EstimatorSpec;
 use argus_tracker::{
     AssociationConfig, EstimatorConfig, MULTI_IMM_HYPOTHESES, PolarNoise, ScoreConfig,
     SensorConfig, SensorId, TrackerConfig,
@@ -13,7 +14,7 @@ use toml::Spanned;
 
 use super::errors::config_error;
 use super::schema::{EstimatorTable, File, ModelKind, Source, TrackerTable};
-use super::spec::{Estimator, Sensor};
+use super::spec::Sensor;
 use crate::error::CliError;
 
 /// `max_exact_events` when `association = "jpda"` does not give it (the default of
@@ -39,7 +40,7 @@ pub(super) fn build(
     file: &File,
     table: &Spanned<TrackerTable>,
     sensors: &[Sensor],
-    estimator: &Estimator,
+    estimator: &EstimatorSpec,
 ) -> Result<MultiTarget, CliError> {
     let cx = Cx {
         src,
@@ -111,7 +112,11 @@ impl Cx<'_> {
 
     /// The tracker configuration as written (not yet validated); the library's defaults
     /// for every key not written.
-    fn config(&self, sensors: &[Sensor], estimator: &Estimator) -> Result<TrackerConfig, CliError> {
+    fn config(
+        &self,
+        sensors: &[Sensor],
+        estimator: &EstimatorSpec,
+    ) -> Result<TrackerConfig, CliError> {
         let t = self.table.get_ref();
         let mut c = TrackerConfig::new(sensors.iter().map(|s| SensorConfig {
             id: SensorId(s.id),
@@ -232,18 +237,22 @@ impl Cx<'_> {
     /// its two-mode CV IMM, `multi-imm` its multi-IMM around that IMM (five hypotheses on
     /// one common scale; grid spacing and clip as checked, defaults included, by
     /// [`super::spec`]), `aircraft-imm` its aircraft IMM with the tuning checked there.
-    fn estimator_into(&self, c: &mut TrackerConfig, estimator: &Estimator) -> Result<(), CliError> {
+    fn estimator_into(
+        &self,
+        c: &mut TrackerConfig,
+        estimator: &EstimatorSpec,
+    ) -> Result<(), CliError> {
         let e = self.estimator;
         c.estimator = match estimator {
-            Estimator::KfConverted(sigma_a) => {
+            EstimatorSpec::KfConverted(sigma_a) => {
                 c.sigma_a = *sigma_a;
                 EstimatorConfig::Kf
             }
-            Estimator::Ekf(sigma_a) => {
+            EstimatorSpec::Ekf(sigma_a) => {
                 c.sigma_a = *sigma_a;
                 EstimatorConfig::Ekf
             }
-            Estimator::Imm(_) => {
+            EstimatorSpec::Imm(_) => {
                 let (sigma_a_low, sigma_a_high, p_stay) = self.imm_cv2()?;
                 EstimatorConfig::ImmCv2 {
                     sigma_a_low,
@@ -251,7 +260,7 @@ impl Cx<'_> {
                     p_stay,
                 }
             }
-            Estimator::MultiImm(_, multi) => {
+            EstimatorSpec::MultiImm(_, multi) => {
                 let (sigma_a_low, sigma_a_high, p_stay) = self.imm_cv2()?;
                 if multi.n != MULTI_IMM_HYPOTHESES {
                     let msg = format!(
@@ -278,7 +287,7 @@ impl Cx<'_> {
                     clip: multi.clip,
                 }
             }
-            Estimator::Aircraft(tuning) => EstimatorConfig::Aircraft { tuning: *tuning },
+            EstimatorSpec::Aircraft(tuning) => EstimatorConfig::Aircraft { tuning: *tuning },
         };
         Ok(())
     }
