@@ -153,7 +153,7 @@ fn an_imm_of_three_identical_modes_is_the_kf() {
     // the IMM's combination of identical mode-matched filters) and μ stays μ₀ = 1/3 under
     // a doubly stochastic Markov matrix; equal to round-off (1e-9 relative).
     for (a, b) in planar(&kf).iter().zip(planar(&imm)) {
-        assert_eq!(a.time, b.time);
+        assert!(a.time.total_cmp(&b.time).is_eq());
         let d = (a.state.mean() - b.state.mean()).amax();
         assert!(d < 1e-9 * a.state.mean().amax(), "{d}");
         let dc = (a.state.cov() - b.state.cov()).amax();
