@@ -27,7 +27,6 @@ mod campaign_plan;
 mod campaign_scan;
 mod convert;
 mod error;
-mod estimator;
 mod merge_error;
 mod progress;
 mod render;

@@ -7,7 +7,9 @@ use std::path::Path;
 use crate::error::ConfigError;
 use crate::geo::{self, Reference};
 use crate::schema::{self, Source};
-use crate::spec::{self, Estimator, Sensor};
+use argus_tracker::single::EstimatorSpec;
+
+use crate::spec::{self, Sensor};
 use crate::tracker_config::{self, MultiTarget};
 use argus_sensors::Plot;
 
@@ -19,7 +21,7 @@ pub enum Job {
         /// The checked sensors.
         sensors: Vec<Sensor>,
         /// The checked estimator.
-        estimator: Estimator,
+        estimator: EstimatorSpec,
     },
     /// The multi-target tracker.
     Multi(MultiTarget),

@@ -1,7 +1,7 @@
 //! The `argus track` configuration file (TOML, `docs/FORMATS.md`) turned into a checked
 //! specification: [`load`] reads the file once (its `schema` keeps every value's line),
 //! checks its `[[sensor]]` and `[estimator]` tables once with every default filled in
-//! ([`Sensor`], [`Estimator`]), its optional `[reference]` point ([`Reference`], sensors
+//! ([`Sensor`], [`argus_tracker::single::EstimatorSpec`]), its optional `[reference]` point ([`Reference`], sensors
 //! given by latitude and longitude around it) and, with a `[tracker]` table, maps it
 //! onto the tracker's configuration ([`MultiTarget`], whose validation errors are mapped
 //! back to the file's keys). The result is a [`Job`]: one estimator over a plot file, or
@@ -23,5 +23,5 @@ mod tracker_errors;
 pub use crate::error::{ConfigError, Location};
 pub use crate::geo::{Reference, to_reference};
 pub use crate::job::{Job, Loaded, load};
-pub use crate::spec::{Estimator, ImmSpec, MAX_MODELS, MultiSpec, Sensor, turned};
+pub use crate::spec::{Sensor, turned};
 pub use crate::tracker_config::{DEFAULT_MAX_EXACT_EVENTS, MultiTarget};

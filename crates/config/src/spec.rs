@@ -1,4 +1,4 @@
-//! The checked `[[sensor]]` and `[estimator]` tables: [`Sensor`]s and an [`Estimator`]
+//! The checked `[[sensor]]` and `[estimator]` tables: [`Sensor`]s and an [`EstimatorSpec`]
 //! with every default filled in (here, once). Both jobs start from these: the
 //! single-target estimators use them as they are, the tracker maps them onto its own
 //! configuration ([`crate::tracker_config`]).
@@ -6,6 +6,7 @@
 use argus_asterix::DataSource;
 use argus_imm::{AircraftTuning, Augmentation, PROBABILITY_SUM_TOL};
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
+use argus_tracker::single::{EstimatorSpec, ImmSpec, MAX_MODELS, MultiSpec};
 use argus_tracker::{Rotation, RotationDirection};
 use toml::Spanned;
 
@@ -36,62 +37,6 @@ pub struct Sensor {
     /// its plots' azimuths are turned (`geo::sensor_position`); 0 for a sensor
     /// given by `position`.
     pub grid_rotation: f64,
-}
-
-/// A checked estimator: its kind and the CV model's white-acceleration σ (m/s²), or the
-/// IMM (and multi-IMM) description. The KF and EKF are built for the plot file's
-/// dimension (2-D or 3-D CV); the IMMs are 2-D.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Estimator {
-    /// `kf-converted`: the KF on converted plots, with its σ_a.
-    KfConverted(f64),
-    /// `ekf`: the EKF on polar plots, with its σ_a.
-    Ekf(f64),
-    /// `imm`: the IMM of CV / fixed-rate CT Kalman filters.
-    Imm(ImmSpec),
-    /// `multi-imm`: the multi-IMM around that IMM.
-    MultiImm(ImmSpec, MultiSpec),
-    /// `aircraft-imm`: the aircraft IMM's tuning.
-    Aircraft(AircraftTuning<2, 3>),
-}
-
-/// The largest number of motion models an `argus track` IMM may have (the mode count is a
-/// compile-time size; 1 … 5 are built).
-pub const MAX_MODELS: usize = 5;
-
-/// A checked IMM description: one planar motion model per mode, the Markov matrix (rows
-/// of `models.len()` entries) and the initial mode probabilities.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ImmSpec {
-    /// The mode-matched models (CV or fixed-rate CT), each in a Kalman filter.
-    pub models: Vec<PlanarModel>,
-    /// `π_ij`, row by row.
-    pub markov: Vec<Vec<f64>>,
-    /// `μ₀`.
-    pub initial: Vec<f64>,
-}
-
-/// The multi-IMM's parameters (seed 000 eqs (12)–(14), generalised).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MultiSpec {
-    /// Hypotheses per axis (`n` IMMs with one common scale, `n²` with `per_axis`).
-    pub n: usize,
-    /// Grid spacing `p`.
-    pub p: f64,
-    /// Per-step clip of the reference's relative change (`None`: unclipped).
-    pub clip: Option<f64>,
-    /// Range and azimuth variances on an independent `n × n` grid.
-    pub per_axis: bool,
-}
-
-impl MultiSpec {
-    /// The defaults: the paper's five hypotheses on one scale, `p = 0.1`, ±5 % clip.
-    pub const DEFAULT: Self = Self {
-        n: 5,
-        p: 0.1,
-        clip: Some(0.05),
-        per_axis: false,
-    };
 }
 
 fn non_negative(src: Source<'_>, field: &str, v: &Spanned<f64>) -> Result<f64, ConfigError> {
@@ -258,7 +203,7 @@ pub fn turned(r: Rotation, gamma: f64) -> Rotation {
 /// # Errors
 /// [`ConfigError::Input`] at the bad value, or naming the missing key;
 /// [`ConfigError::Motion`] for a model the motion-model crate refuses.
-pub(crate) fn estimator(src: Source<'_>, e: &EstimatorTable) -> Result<Estimator, ConfigError> {
+pub(crate) fn estimator(src: Source<'_>, e: &EstimatorTable) -> Result<EstimatorSpec, ConfigError> {
     let kind = *e.kind.get_ref();
     let sigma_a = || {
         let sa = e
@@ -268,11 +213,11 @@ pub(crate) fn estimator(src: Source<'_>, e: &EstimatorTable) -> Result<Estimator
         non_negative(src, "sigma_a", sa)
     };
     Ok(match kind {
-        EstimatorKind::KfConverted => Estimator::KfConverted(sigma_a()?),
-        EstimatorKind::Ekf => Estimator::Ekf(sigma_a()?),
-        EstimatorKind::Imm => Estimator::Imm(imm_spec(src, e)?),
-        EstimatorKind::MultiImm => Estimator::MultiImm(imm_spec(src, e)?, multi_spec(src, e)?),
-        EstimatorKind::AircraftImm => Estimator::Aircraft(aircraft(src, e)?),
+        EstimatorKind::KfConverted => EstimatorSpec::KfConverted(sigma_a()?),
+        EstimatorKind::Ekf => EstimatorSpec::Ekf(sigma_a()?),
+        EstimatorKind::Imm => EstimatorSpec::Imm(imm_spec(src, e)?),
+        EstimatorKind::MultiImm => EstimatorSpec::MultiImm(imm_spec(src, e)?, multi_spec(src, e)?),
+        EstimatorKind::AircraftImm => EstimatorSpec::Aircraft(aircraft(src, e)?),
     })
 }
 

@@ -5,7 +5,9 @@ use argus_tracker::{AssociationConfig, EstimatorConfig, SensorId, TrackerConfig}
 
 use crate::error::ConfigError;
 use crate::job::{Job, load};
-use crate::spec::{Estimator, MultiSpec, Sensor};
+use argus_tracker::single::{EstimatorSpec, MultiSpec};
+
+use crate::spec::Sensor;
 use crate::tracker_config::{DEFAULT_MAX_EXACT_EVENTS, MultiTarget};
 
 /// Loads a configuration written to a temporary file `f.toml` (for the tests of this
@@ -36,7 +38,7 @@ mod single {
 
     const GOOD: &str = "[[sensor]]\nid = 3\nposition = [1.0, 2.0, 3.0]\nsigma_range = 10.0\nsigma_azimuth_deg = 0.5\nsigma_elevation_deg = 0.25\n\n[estimator]\nkind = \"ekf\"\nsigma_a = 2.0\n";
 
-    fn single(text: &str) -> (Vec<Sensor>, Estimator) {
+    fn single(text: &str) -> (Vec<Sensor>, EstimatorSpec) {
         match load_text(text) {
             Ok(Job::Single { sensors, estimator }) => (sensors, estimator),
             other => panic!("not a single-target job: {other:?}"),
@@ -58,7 +60,7 @@ mod single {
         // 0.5° and 0.25° in radians: π/360 and π/720 (round-off).
         assert!((sa - std::f64::consts::PI / 360.0).abs() < 1e-15);
         assert!((s[0].sigma_elevation.unwrap() - std::f64::consts::PI / 720.0).abs() < 1e-15);
-        assert!(matches!(e, Estimator::Ekf(v) if (v - 2.0).abs() < 1e-15));
+        assert!(matches!(e, EstimatorSpec::Ekf(v) if (v - 2.0).abs() < 1e-15));
         // A 2-D position gets z = 0.
         let (s, _) = single(&GOOD.replace("[1.0, 2.0, 3.0]", "[1.0, 2.0]"));
         assert_eq!(
@@ -71,7 +73,7 @@ mod single {
     fn multi_imm_defaults_are_written_once() {
         let text = "[estimator]\nkind = \"multi-imm\"\nmodels = [{ kind = \"cv\", sigma_a = 0.1 }]\nmarkov = [[1.0]]\n";
         let (_, e) = single(text);
-        let Estimator::MultiImm(imm, multi) = e else {
+        let EstimatorSpec::MultiImm(imm, multi) = e else {
             panic!("not a multi-IMM: {e:?}");
         };
         assert_eq!(multi, MultiSpec::DEFAULT);

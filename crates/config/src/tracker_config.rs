@@ -13,7 +13,9 @@ use toml::Spanned;
 
 use crate::error::ConfigError;
 use crate::schema::{EstimatorTable, File, ModelKind, Source, TrackerTable};
-use crate::spec::{Estimator, Sensor};
+use argus_tracker::single::EstimatorSpec;
+
+use crate::spec::Sensor;
 use crate::tracker_errors::config_error;
 
 /// `max_exact_events` when `association = "jpda"` does not give it (the default of
@@ -40,7 +42,7 @@ pub(crate) fn build(
     file: &File,
     table: &Spanned<TrackerTable>,
     sensors: &[Sensor],
-    estimator: &Estimator,
+    estimator: &EstimatorSpec,
 ) -> Result<MultiTarget, ConfigError> {
     let cx = Cx {
         src,
@@ -120,7 +122,7 @@ impl Cx<'_> {
     fn config(
         &self,
         sensors: &[Sensor],
-        estimator: &Estimator,
+        estimator: &EstimatorSpec,
     ) -> Result<TrackerConfig, ConfigError> {
         let t = self.table.get_ref();
         let mut c = TrackerConfig::new(sensors.iter().map(|s| SensorConfig {
@@ -245,19 +247,19 @@ impl Cx<'_> {
     fn estimator_into(
         &self,
         c: &mut TrackerConfig,
-        estimator: &Estimator,
+        estimator: &EstimatorSpec,
     ) -> Result<(), ConfigError> {
         let e = self.estimator;
         c.estimator = match estimator {
-            Estimator::KfConverted(sigma_a) => {
+            EstimatorSpec::KfConverted(sigma_a) => {
                 c.sigma_a = *sigma_a;
                 EstimatorConfig::Kf
             }
-            Estimator::Ekf(sigma_a) => {
+            EstimatorSpec::Ekf(sigma_a) => {
                 c.sigma_a = *sigma_a;
                 EstimatorConfig::Ekf
             }
-            Estimator::Imm(_) => {
+            EstimatorSpec::Imm(_) => {
                 let (sigma_a_low, sigma_a_high, p_stay) = self.imm_cv2()?;
                 EstimatorConfig::ImmCv2 {
                     sigma_a_low,
@@ -265,7 +267,7 @@ impl Cx<'_> {
                     p_stay,
                 }
             }
-            Estimator::MultiImm(_, multi) => {
+            EstimatorSpec::MultiImm(_, multi) => {
                 let (sigma_a_low, sigma_a_high, p_stay) = self.imm_cv2()?;
                 if multi.n != MULTI_IMM_HYPOTHESES {
                     let msg = format!(
@@ -292,7 +294,7 @@ impl Cx<'_> {
                     clip: multi.clip,
                 }
             }
-            Estimator::Aircraft(tuning) => EstimatorConfig::Aircraft { tuning: *tuning },
+            EstimatorSpec::Aircraft(tuning) => EstimatorConfig::Aircraft { tuning: *tuning },
         };
         Ok(())
     }

@@ -1,4 +1,5 @@
-//! Multi-target surveillance tracker: plots in, tracks out.
+//! Multi-target surveillance tracker: plots in, tracks out (and the single-target engine,
+//! [`single`]).
 //!
 //! A [`Tracker`] consumes a time-ordered stream of 2-D [`Plot`]s (the workspace's plot
 //! type from `argus-sensors`, re-exported here with its [`SensorId`]) from one or more
@@ -203,6 +204,22 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! # The single-target mode
+//! [`single`] is the engine of `argus track` without a `[tracker]` table: one estimator
+//! over every plot of a run, no association. A [`SingleTarget`] is built from an
+//! [`EstimatorSpec`] (KF or EKF on the 2-D or 3-D CV model, an IMM of 1 …
+//! [`single::MAX_MODELS`] CV / fixed-rate CT Kalman filters, seed 000's multi-IMM, the
+//! aircraft IMM), its sensors ([`single::SingleSensor`]) and an optional [`Smoothing`];
+//! [`SingleTarget::run`] takes the plots, each with the caller's tag
+//! ([`single::TaggedPlot`], e.g. a file line), and returns one [`single::Estimate`] per
+//! row (the estimate with covariance, the IMMs' mode probabilities, the multi-IMM's noise
+//! estimate, the aircraft IMM's turn rate, with smoothing the smoothed values) and which
+//! values the rows have ([`single::Columns`]), or a [`SingleError`] naming the plot's tag.
+//! [`smooth`] holds the smoothing it shares with the command's smoothing of the tracker's
+//! tracks: RTS over recorded rows ([`smooth::rts_rows`]), the IMMs' forward-pass records
+//! ([`smooth::ModeRecorder`]), fixed interval or fixed lag ([`Smoothing`]), and a
+//! [`smooth::Failure`] naming the step and time that could not be smoothed.
+//!
 //! # Not yet here
 //! JPDA with the multi-IMM (refused by the configuration); the
 //! multi-IMM and the aircraft IMM with Cartesian plots (refused per plot); the multi-IMM
@@ -244,6 +261,8 @@ mod pda;
 mod plot;
 mod rotation;
 mod session;
+pub mod single;
+pub mod smooth;
 mod state;
 mod track;
 mod tracker;
@@ -262,6 +281,8 @@ pub use error::TrackerError;
 pub use field::{AssociationField, ConfigField, EstimatorField, ScoreField, SensorField};
 pub use rotation::{Rotation, RotationDirection};
 pub use session::{Concluded, Input, Output, Session, SessionError, TrackEvent, TrackSnapshot};
+pub use single::{EstimatorSpec, SingleError, SingleTarget};
+pub use smooth::Smoothing;
 pub use state::{EstimatorState, MULTI_IMM_HYPOTHESES, ModeProbabilities};
 pub use track::{DeletionReason, Track, TrackId, TrackStatus};
 pub use tracker::{ScanReport, Tracker};

@@ -5,24 +5,17 @@
 //! ([`argus_config::load`]: the sensors, the estimator with every default filled in, the
 //! `[tracker]` table mapped onto the tracker's configuration), the plot file read by
 //! `argus_io` (the plot CSV, or ASTERIX for the configured sensors). The
-//! [`argus_config::Job`] is then one target ([`single`], [`single_imm`],
-//! [`single_aircraft`], started by the one two-point start of [`start`] or, for the
-//! aircraft IMM, its own) or the multi-target tracker ([`multi`]); both write their rows
+//! [`argus_config::Job`] is then one target ([`single`]: `argus_tracker::single`'s
+//! engine, its errors mapped back to the file's lines and keys by [`start`]) or the
+//! multi-target tracker ([`multi`], an `argus_tracker::Session`); both write their rows
 //! through [`argus_io::rows`].
 
-mod mode_record;
 mod multi;
 mod multi_files;
 mod multi_smooth;
 mod names;
 mod single;
-mod single_aircraft;
-mod single_dim;
-mod single_imm;
-mod single_smooth;
 mod smooth;
-mod smooth_aircraft;
-mod smooth_imm;
 mod start;
 mod stream;
 mod tally;

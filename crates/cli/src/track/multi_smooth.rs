@@ -81,11 +81,12 @@ use argus_tracker::{
     SensorId, TrackSnapshot, TrackStatus, TrackerConfig, TwoModeImm, two_mode_imm,
 };
 
-use super::mode_record::ModeRecorder;
+use argus_tracker::smooth::{
+    self, AircraftRecorder, Failure, ImmRecorder, ModeRecorder, Smoothing, rts_rows,
+};
+
 use super::names::{reason_name, status_name};
-use super::smooth::{self, Failure, Smoothing, rts_rows};
-use super::smooth_aircraft::AircraftRecorder;
-use super::smooth_imm::ImmRecorder;
+use super::smooth::SmoothFailure as _;
 use crate::error::CliError;
 
 /// One row as the tracker gave it.

@@ -1,13 +1,12 @@
 //! The smoothing of a single-target run (`imm`, `multi-imm`, `aircraft-imm` with
 //! `--smooth` / `--smooth-lag`): its recorded forward pass smoothed once the plots are
 //! done, and each row given its step's smoothed estimate (rows of one time are one step,
-//! [`smooth::steps`]).
+//! [`crate::smooth::steps`]).
 
 use argus_imm::ForwardRecord;
 
-use super::mode_record::ModeRecorder;
-use super::smooth::{self, Failure, Smoothing};
-use crate::error::CliError;
+use super::error::SingleError;
+use crate::smooth::{self, Failure, ModeRecorder, Smoothing};
 
 /// A run's smoothed steps, and the step of each row.
 pub(super) struct SmoothedRun<S> {
@@ -23,18 +22,20 @@ impl<S> SmoothedRun<S> {
 }
 
 /// With smoothing (`how`), the record `record` of `imm` smoothed, for the rows of times
-/// `times` (the run's one track is track 1); `None` without.
+/// `times`; `None` without.
 ///
 /// # Errors
-/// [`CliError::Smooth`] for a step that cannot be smoothed.
+/// [`SingleError::Smoothing`] for a step that cannot be smoothed.
 pub(super) fn smooth_run<T: ForwardRecord<M, 4, Estimate = E>, M, E>(
     record: Option<ModeRecorder<T, E>>,
     imm: &M,
     how: Option<Smoothing>,
     times: &[f64],
-) -> Result<Option<SmoothedRun<T::Smoothed>>, CliError> {
+) -> Result<Option<SmoothedRun<T::Smoothed>>, SingleError> {
     let steps = match (record, how) {
-        (Some(r), Some(how)) => r.smooth(imm, how).map_err(|f: Failure| f.into_cli(1))?,
+        (Some(r), Some(how)) => r
+            .smooth(imm, how)
+            .map_err(|f: Failure| SingleError::Smoothing(f))?,
         _ => return Ok(None),
     };
     Ok(Some(SmoothedRun {

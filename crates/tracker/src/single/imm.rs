@@ -5,7 +5,7 @@
 //! `K` are compile-time sizes, picked here from the run-time configuration.
 //!
 //! With `--smooth` / `--smooth-lag` the IMM is smoothed by `argus_imm`'s IMM smoother
-//! over its recorded forward pass ([`ImmRecorder`]). The multi-IMM is smoothed the same
+//! over its recorded forward pass ([`crate::smooth::ImmRecorder`]). The multi-IMM is smoothed the same
 //! way over its recorded moments: its `K` IMMs share the dynamics (the models and the
 //! Markov matrix) and differ only in `R`, so its posterior merged over the noise
 //! hypotheses ([`MultiImmEstimate::merged`]) is an IMM posterior of the common dynamics,
@@ -17,24 +17,22 @@
 //! as for the tracker's IMM-JPDA tracks). The smoothed mode probabilities go to
 //! `mu_1s …`, as for the IMM.
 
-use argus_config::{ImmSpec, MAX_MODELS, MultiSpec};
 use argus_core_math::Gaussian;
 use argus_filters::{Kf, two_point_cv2};
 use argus_imm::{
     Imm, ImmError, ImmEstimate, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid,
     NoiseVariances, UnbiasedConversion,
 };
-use argus_io::plotfile::FilePlot;
-use argus_io::rows::{Column, Point, TrackRows};
 use argus_motion_models::PlanarModel;
 use argus_sensors::Measurement;
 
-use super::single_smooth::smooth_run;
-use super::smooth::Failure;
-use super::smooth_imm::ImmRecorder;
-use super::start::{Ctx, too_few, two_point};
-use crate::error::CliError;
-use crate::estimator::position;
+use super::error::{OneRadar, SingleError};
+use super::estimator::position;
+use super::output::{Columns, Estimate, Estimates, SingleRun, TaggedPlot};
+use super::smoothed::smooth_run;
+use super::spec::{ImmSpec, MultiSpec};
+use super::start::{Ctx, two_point};
+use crate::smooth::ImmRecorder;
 
 /// Calls `$f::<R>(args…)` for the run-time mode count `R ∈ 1 … MAX_MODELS`.
 macro_rules! by_modes {
@@ -45,7 +43,7 @@ macro_rules! by_modes {
             3 => $f::<3>($($arg),*),
             4 => $f::<4>($($arg),*),
             5 => $f::<5>($($arg),*),
-            r => Err(CliError::Usage(format!("{r} IMM models: at most {MAX_MODELS}"))),
+            count => Err(SingleError::ModeCount { count }),
         }
     };
 }
@@ -54,25 +52,25 @@ macro_rules! by_modes {
 /// mixing or prediction.
 ///
 /// # Errors
-/// As [`super::single::run`].
+/// As [`super::kf::run`].
 pub(super) fn imm(
     ctx: &Ctx<'_>,
     spec: &ImmSpec,
-    plots: &[FilePlot],
-) -> Result<TrackRows, CliError> {
+    plots: &[TaggedPlot],
+) -> Result<SingleRun, SingleError> {
     by_modes!(spec.models.len(), track_imm, ctx, spec, plots)
 }
 
 /// The multi-IMM of `multi` around the IMM of `spec` over the polar plots of one sensor.
 ///
 /// # Errors
-/// As [`super::single::run`]; a plot of another sensor or a Cartesian report.
+/// As [`super::kf::run`]; a plot of another sensor or a Cartesian report.
 pub(super) fn multi_imm(
     ctx: &Ctx<'_>,
     spec: &ImmSpec,
     multi: MultiSpec,
-    plots: &[FilePlot],
-) -> Result<TrackRows, CliError> {
+    plots: &[TaggedPlot],
+) -> Result<SingleRun, SingleError> {
     by_modes!(spec.models.len(), track_multi, ctx, spec, multi, plots)
 }
 
@@ -87,8 +85,8 @@ fn count_mismatch() -> ImmError {
 /// plots.
 ///
 /// # Errors
-/// [`CliError::Imm`] for an invalid Markov matrix or a mode count other than `R`.
-fn build_imm<const R: usize>(spec: &ImmSpec) -> Result<Imm<Kf<PlanarModel>, 4, R>, CliError> {
+/// [`SingleError::Imm`] for an invalid Markov matrix or a mode count other than `R`.
+fn build_imm<const R: usize>(spec: &ImmSpec) -> Result<Imm<Kf<PlanarModel>, 4, R>, SingleError> {
     let filters: [Kf<PlanarModel>; R] = spec
         .models
         .iter()
@@ -110,7 +108,7 @@ fn build_imm<const R: usize>(spec: &ImmSpec) -> Result<Imm<Kf<PlanarModel>, 4, R
 fn start_estimate<const R: usize>(
     spec: &ImmSpec,
     g: Gaussian<4>,
-) -> Result<ImmEstimate<4, R>, CliError> {
+) -> Result<ImmEstimate<4, R>, SingleError> {
     let mu = <[f64; R]>::try_from(spec.initial.as_slice()).map_err(|_| count_mismatch())?;
     Ok(ImmEstimate::from_common(g, mu)?)
 }
@@ -118,16 +116,16 @@ fn start_estimate<const R: usize>(
 fn track_imm<const R: usize>(
     ctx: &Ctx<'_>,
     spec: &ImmSpec,
-    plots: &[FilePlot],
-) -> Result<TrackRows, CliError> {
+    plots: &[TaggedPlot],
+) -> Result<SingleRun, SingleError> {
     let imm = build_imm::<R>(spec)?;
-    let start = two_point(ctx, plots, |p| ctx.convert2(p), two_point_cv2)?;
+    let start = two_point(plots, |p| ctx.convert2(p), two_point_cv2)?;
     let mut est = start_estimate::<R>(spec, start.estimate)?;
     let mut t = start.second.time();
     // With smoothing, the forward pass is recorded (one step per time).
     let mut record = ctx.smoothing.map(|_| ImmRecorder::new());
     let mut out: Vec<(f64, Gaussian<4>, [f64; R])> = Vec::with_capacity(start.rest.len() + 1);
-    let fail = |f: Failure| f.into_cli(1);
+    let fail = SingleError::Smoothing;
     if let Some(r) = &mut record {
         r.record(&imm, t, est).map_err(fail)?;
     }
@@ -151,21 +149,27 @@ fn track_imm<const R: usize>(
     }
     let times: Vec<f64> = out.iter().map(|o| o.0).collect();
     let smoothed = smooth_run(record, &imm, ctx.smoothing, &times)?;
-    let mut columns = Column::single(2, R, false);
-    if smoothed.is_some() {
-        columns.extend(Column::smoothed_single(2, R));
-    }
-    let mut rows = TrackRows::with_reference(columns, ctx.reference);
+    let columns = Columns {
+        axes: 2,
+        modes: R,
+        noise: false,
+        turn_rate: false,
+        smoothed: smoothed.is_some(),
+    };
+    let mut rows = Vec::with_capacity(out.len());
     for (i, (t, c, mu)) in out.iter().enumerate() {
         let s = smoothed.as_ref().and_then(|s| s.at(i));
-        rows.push(
-            &Point::new(*t, c)
-                .modes(Some(mu))
-                .smoothed(s.map(|s| &s.combined))
-                .smoothed_modes(s.map(|s| s.mode_probabilities.as_slice())),
-        );
+        rows.push(Estimate {
+            modes: Some(mu.to_vec()),
+            smoothed: s.map(|s| s.combined),
+            smoothed_modes: s.map(|s| s.mode_probabilities.to_vec()),
+            ..Estimate::new(*t, *c)
+        });
     }
-    Ok(rows)
+    Ok(SingleRun {
+        columns,
+        estimates: Estimates::Planar(rows),
+    })
 }
 
 /// The multi-IMM around an IMM with `R` modes: picks the grid size from `multi`.
@@ -173,8 +177,8 @@ fn track_multi<const R: usize>(
     ctx: &Ctx<'_>,
     spec: &ImmSpec,
     multi: MultiSpec,
-    plots: &[FilePlot],
-) -> Result<TrackRows, CliError> {
+    plots: &[TaggedPlot],
+) -> Result<SingleRun, SingleError> {
     let (p, c) = (multi.p, multi.clip);
     match (multi.per_axis, multi.n) {
         (false, 3) => track_multi_k::<R, 3>(ctx, spec, NoiseGrid::common(p)?, c, plots),
@@ -183,9 +187,7 @@ fn track_multi<const R: usize>(
         (false, 9) => track_multi_k::<R, 9>(ctx, spec, NoiseGrid::common(p)?, c, plots),
         (true, 3) => track_multi_k::<R, 9>(ctx, spec, NoiseGrid::independent(p)?, c, plots),
         (true, 5) => track_multi_k::<R, 25>(ctx, spec, NoiseGrid::independent(p)?, c, plots),
-        (_, n) => Err(CliError::Usage(format!(
-            "multi-IMM with n = {n} is not built"
-        ))),
+        (_, n) => Err(SingleError::MultiSize { n }),
     }
 }
 
@@ -196,30 +198,18 @@ fn track_multi_k<const R: usize, const K: usize>(
     spec: &ImmSpec,
     grid: NoiseGrid<K>,
     clip: Option<f64>,
-    plots: &[FilePlot],
-) -> Result<TrackRows, CliError> {
+    plots: &[TaggedPlot],
+) -> Result<SingleRun, SingleError> {
     let multi = MultiImm::new(build_imm::<R>(spec)?, grid, clip)?;
-    let first = plots.first().ok_or_else(|| too_few(ctx))?;
+    let first = plots.first().ok_or(SingleError::TooFewPlots)?;
     let sensor = ctx.sensor(first)?;
     let (sr, sa) = ctx.polar_sigmas(sensor)?;
-    let not_polar = |p: &FilePlot, what: &str| {
-        CliError::input(
-            ctx.plots_path,
-            Some(p.line),
-            Some("sensor"),
-            format!("the multi-IMM estimates one polar radar's noise: {what}"),
-        )
-    };
     let conv = UnbiasedConversion::<4>::new(0, 2)?.at([sensor.position[0], sensor.position[1]])?;
-    let reference = NoiseVariances::from_sigmas(sr, sa).map_err(|e| {
-        CliError::input(
-            ctx.config,
-            None,
-            Some("sigma_range"),
-            format!("sensor {}: {e}", sensor.id),
-        )
+    let reference = NoiseVariances::from_sigmas(sr, sa).map_err(|e| SingleError::SensorNoise {
+        sensor: sensor.id,
+        message: e.to_string(),
     })?;
-    let start = two_point(ctx, plots, |p| ctx.convert2(p), two_point_cv2)?;
+    let start = two_point(plots, |p| ctx.convert2(p), two_point_cv2)?;
     let p2 = start.second;
     let mut est =
         MultiImmEstimate::<4, R, K>::new(start_estimate::<R>(spec, start.estimate)?, reference);
@@ -227,7 +217,7 @@ fn track_multi_k<const R: usize, const K: usize>(
     // With smoothing, the posteriors merged over the noise hypotheses are recorded as an
     // IMM forward pass of the common dynamics (module docs).
     let mut record = ctx.smoothing.map(|_| ImmRecorder::new());
-    let fail = |f: Failure| f.into_cli(1);
+    let fail = SingleError::Smoothing;
     let mut out: Vec<(f64, Gaussian<4>, [f64; R], NoiseVariances)> =
         Vec::with_capacity(start.rest.len() + 1);
     if let Some(r) = &mut record {
@@ -239,17 +229,23 @@ fn track_multi_k<const R: usize, const K: usize>(
         est.mode_probabilities(),
         *est.reference(),
     ));
-    for p in plots.iter().take(2).chain(start.rest) {
+    // Every plot is checked, the first two (the start's) included, then skipped.
+    for (i, p) in plots.iter().enumerate() {
         if p.sensor() != sensor.id {
-            return Err(not_polar(
-                p,
-                &format!("plot of sensor {} after sensor {}", p.sensor(), sensor.id),
-            ));
+            return Err(SingleError::OtherSensor {
+                tag: p.tag,
+                estimator: OneRadar::MultiImm,
+                sensor: p.sensor(),
+                first: sensor.id,
+            });
         }
         let Measurement::Polar(plot) = p.measurement() else {
-            return Err(not_polar(p, "a Cartesian report"));
+            return Err(SingleError::NotPolar {
+                tag: p.tag,
+                estimator: OneRadar::MultiImm,
+            });
         };
-        if p.line <= p2.line {
+        if i < 2 {
             continue;
         }
         let dt = p.time() - t;
@@ -267,20 +263,26 @@ fn track_multi_k<const R: usize, const K: usize>(
     }
     let times: Vec<f64> = out.iter().map(|o| o.0).collect();
     let smoothed = smooth_run(record, multi.imm(), ctx.smoothing, &times)?;
-    let mut columns = Column::single(2, R, true);
-    if smoothed.is_some() {
-        columns.extend(Column::smoothed_single(2, R));
-    }
-    let mut rows = TrackRows::with_reference(columns, ctx.reference);
+    let columns = Columns {
+        axes: 2,
+        modes: R,
+        noise: true,
+        turn_rate: false,
+        smoothed: smoothed.is_some(),
+    };
+    let mut rows = Vec::with_capacity(out.len());
     for (i, (t, c, mu, noise)) in out.iter().enumerate() {
         let s = smoothed.as_ref().and_then(|s| s.at(i));
-        rows.push(
-            &Point::new(*t, c)
-                .modes(Some(mu))
-                .noise(Some(*noise))
-                .smoothed(s.map(|s| &s.combined))
-                .smoothed_modes(s.map(|s| s.mode_probabilities.as_slice())),
-        );
+        rows.push(Estimate {
+            modes: Some(mu.to_vec()),
+            noise: Some(*noise),
+            smoothed: s.map(|s| s.combined),
+            smoothed_modes: s.map(|s| s.mode_probabilities.to_vec()),
+            ..Estimate::new(*t, *c)
+        });
     }
-    Ok(rows)
+    Ok(SingleRun {
+        columns,
+        estimates: Estimates::Planar(rows),
+    })
 }
