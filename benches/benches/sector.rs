@@ -7,7 +7,10 @@
 //!
 //! `tracker_sector_step/1000` times one sector: `process` of its plots and `advance_to`
 //! its end (which processes it), on a tracker in operation. `tracker_sector_revolution/1000`
-//! times the 8 sectors of one revolution. As in the tracker bench, the tracker timed is a
+//! times the 8 sectors of one revolution. `session_sector_revolution/1000` times the same
+//! revolution fed through an `argus_tracker::Session` (each plot an `Input::Plot`, each
+//! sector end an `Input::Marker`), whose outputs are one `TrackSnapshot` per track per
+//! sector: the tracker's work plus the session's (grouping, snapshots). As in the tracker bench, the tracker timed is a
 //! clone of the warmed-up one that has first run one revolution untimed, so that its
 //! buffers have the capacity a running tracker's have.
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used)]
@@ -16,7 +19,9 @@ use std::f64::consts::TAU;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use argus_tracker::{Plot, Rotation, SensorConfig, SensorId, Tracker, TrackerConfig};
+use argus_tracker::{
+    Input, Output, Plot, Rotation, SensorConfig, SensorId, Session, Tracker, TrackerConfig,
+};
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -97,6 +102,16 @@ fn sector(all: &[Plot], k: usize) -> Vec<Plot> {
         .collect()
 }
 
+/// One sector through a session: its plots, then a marker at its end; the outputs' rows.
+fn session_step(session: &mut Session, plots: &[Plot], end: f64, out: &mut Vec<Output>) -> usize {
+    out.clear();
+    for (tag, plot) in (0..).zip(plots) {
+        session.push(Input::Plot { plot: *plot, tag }, out).unwrap();
+    }
+    session.push(Input::Marker(end), out).unwrap();
+    out.len()
+}
+
 /// One sector: its plots, then time up to its end.
 fn step(tracker: &mut Tracker, plots: &[Plot], end: f64) -> usize {
     tracker.process(plots).unwrap().len() + tracker.advance_to(end).unwrap().len()
@@ -110,7 +125,7 @@ fn sectors(c: &mut Criterion) {
         SensorConfig::polar(SensorId(1), [0.0, 0.0], SIGMA_R, SIGMA_AZ)
             .with_rotation(Rotation::clockwise(P)),
     ]);
-    let mut warmed = Tracker::new(cfg).unwrap();
+    let mut warmed = Tracker::new(cfg.clone()).unwrap();
     let warm_sectors = WARM as usize * SECTORS;
     for k in 0..warm_sectors {
         step(&mut warmed, &sector(&all, k), (k + 1) as f64 * len);
@@ -172,6 +187,43 @@ fn sectors(c: &mut Criterion) {
                 let start = Instant::now();
                 for (p, end) in &timed {
                     black_box(step(&mut running, p, *end));
+                }
+                total += start.elapsed();
+            }
+            total
+        });
+    });
+    group.finish();
+
+    // The same revolutions through a session warmed up the same way.
+    let mut warm_session = Session::new(cfg).unwrap();
+    let mut out = Vec::new();
+    for k in 0..warm_sectors {
+        session_step(
+            &mut warm_session,
+            &sector(&all, k),
+            (k + 1) as f64 * len,
+            &mut out,
+        );
+    }
+    let ready_session = || {
+        let mut s = warm_session.clone();
+        let mut out = Vec::new();
+        for (p, end) in &untimed {
+            session_step(&mut s, p, *end, &mut out);
+        }
+        (s, out)
+    };
+    let mut group = c.benchmark_group("session_sector_revolution");
+    group.sample_size(10);
+    group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
+        b.iter_custom(|iters| {
+            let mut total = Duration::ZERO;
+            for _ in 0..iters {
+                let (mut running, mut out) = ready_session();
+                let start = Instant::now();
+                for (p, end) in &timed {
+                    black_box(session_step(&mut running, p, *end, &mut out));
                 }
                 total += start.elapsed();
             }
