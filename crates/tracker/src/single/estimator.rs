@@ -1,7 +1,8 @@
 //! The estimators the engine builds from the foundation crates: Kalman filters on the
 //! 2-D and 3-D constant-velocity models (DWNA noise) with converted plots, EKFs on polar
-//! and spherical plots, the unbiased conversions and one predict + update step (the 2-D
-//! KF, the polar conversion and the step as `argus_scenarios::estimator`'s).
+//! and spherical plots, the unbiased conversions and one predict + update step. The 2-D
+//! KF, the polar conversion, the position measurement and the step are public (the
+//! scenarios' `argus_scenarios::estimator` re-exports them).
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{Ekf, FilterError, GaussianFilter, Innovation, Kf};
@@ -12,7 +13,10 @@ use argus_sensors::{
 };
 
 /// A KF on a 2-D CV model with white-acceleration σ `sigma_a` (m/s²).
-pub(super) fn cv_kf(sigma_a: f64) -> Result<Kf<Cv2D>, MotionError> {
+///
+/// # Errors
+/// The model's error for a negative or non-finite σ.
+pub fn cv_kf(sigma_a: f64) -> Result<Kf<Cv2D>, MotionError> {
     Ok(Kf::new(Cv2D::discrete(sigma_a)?))
 }
 
@@ -33,7 +37,10 @@ pub(super) fn cv3_ekf(sigma_a: f64) -> Result<Ekf<Cv3D>, MotionError> {
 
 /// The unbiased converted measurement of a polar plot (relative to its sensor) and its
 /// covariance (Mo Longbin et al. 1998; Bar-Shalom, Li & Kirubarajan 2001 §10.4.3).
-pub(super) fn unbiased(
+///
+/// # Errors
+/// The sensor crate's error for a non-positive range or a bad σ.
+pub fn unbiased(
     range: f64,
     azimuth: f64,
     sigma_r: f64,
@@ -69,7 +76,10 @@ pub(super) fn unbiased3(
 }
 
 /// Position measurement `(x, y)` of `[x, vx, y, vy]` with covariance `r`.
-pub(super) fn position(r: Matrix<2, 2>) -> Result<CartesianPosition<4, 2>, SensorError> {
+///
+/// # Errors
+/// The sensor crate's error for a covariance that is not SPD.
+pub fn position(r: Matrix<2, 2>) -> Result<CartesianPosition<4, 2>, SensorError> {
     CartesianPosition::<4, 2>::cv(r)
 }
 
@@ -96,12 +106,10 @@ pub(super) fn polar(
 }
 
 /// Predicts over `dt` (skipped when `dt = 0`, plots of one instant) and updates with `z`.
-pub(super) fn step<
-    const N: usize,
-    const M: usize,
-    F: GaussianFilter<N>,
-    Me: MeasurementModel<N, M>,
->(
+///
+/// # Errors
+/// The filter's error.
+pub fn step<const N: usize, const M: usize, F: GaussianFilter<N>, Me: MeasurementModel<N, M>>(
     filter: &F,
     est: &Gaussian<N>,
     dt: f64,

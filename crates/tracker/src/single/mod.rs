@@ -49,6 +49,7 @@ mod start;
 mod tests;
 
 pub use error::{OneRadar, SingleError};
+pub use estimator::{cv_kf, position, step, unbiased};
 pub use output::{Columns, Estimate, Estimates, SingleRun, TaggedPlot};
 pub use spec::{EstimatorSpec, ImmSpec, MAX_MODELS, MultiSpec, SingleSensor};
 
