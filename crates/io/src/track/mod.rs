@@ -90,8 +90,8 @@ pub fn run_files(
                     multi::run_to_files(&m, &files, plots)?
                 }
                 None => {
-                    let plots = plotfile::PlotReader::open(plots)?
-                        .map(|p| p.map(|p| p.to_reference(grid)));
+                    let plots =
+                        plotfile::PlotReader::open(plots)?.map(|p| p.map(|p| p.to_reference(grid)));
                     multi::run_to_files(&m, &files, plots)?
                 }
             };

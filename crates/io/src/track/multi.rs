@@ -4,10 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
-use argus_config::MultiTarget;
 use crate::output::{AtomicFile, write_atomic};
 use crate::plotfile::FilePlot;
 use crate::rows::{Column, TrackRows};
+use argus_config::MultiTarget;
 use argus_tracker::{AssociationConfig, EstimatorConfig, Input, Output, Session, TrackerConfig};
 
 use super::multi_files::{Files, plot_error, tracker_plot};

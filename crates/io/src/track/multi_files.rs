@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use argus_config::Reference;
 use crate::plotfile::FilePlot;
+use argus_config::Reference;
 use argus_sensors::Measurement;
 use argus_tracker::{Plot, SessionError, TrackerError};
 

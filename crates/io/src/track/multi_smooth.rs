@@ -69,12 +69,12 @@
 
 use std::collections::BTreeMap;
 
+use crate::rows::{Column, Point, TrackRows};
 use argus_core_math::Gaussian;
 use argus_filters::Kf;
 use argus_imm::{
     AircraftEkf, AircraftEstimate, ForwardRecord, ImmEstimate, MultiImmEstimate, NoiseVariances,
 };
-use crate::rows::{Column, Point, TrackRows};
 use argus_motion_models::Cv2D;
 use argus_tracker::{
     DeletionReason, EstimatorConfig, EstimatorState, MULTI_IMM_HYPOTHESES, ModeProbabilities,
@@ -208,11 +208,7 @@ impl Recorded {
     /// # Errors
     /// [`IoError::Smooth`] naming the track and step of the first failure (nothing is
     /// written).
-    pub(super) fn smooth_into(
-        self,
-        how: Smoothing,
-        out: &mut TrackRows,
-    ) -> Result<usize, IoError> {
+    pub(super) fn smooth_into(self, how: Smoothing, out: &mut TrackRows) -> Result<usize, IoError> {
         let rows = self.rows;
         let mut by_track: BTreeMap<u64, Vec<usize>> = BTreeMap::new();
         for (i, r) in rows.iter().enumerate() {

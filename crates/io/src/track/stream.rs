@@ -4,9 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use argus_config::{Job, Loaded, MultiTarget, Reference};
 use crate::plotfile::{self, FilePlot};
 use crate::rows::TrackRows;
+use argus_config::{Job, Loaded, MultiTarget, Reference};
 use argus_tracker::{Input, Session};
 
 use super::multi;
