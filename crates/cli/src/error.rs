@@ -165,6 +165,25 @@ impl From<IoError> for CliError {
             },
             IoError::Encode(message) => Self::Usage(message),
             IoError::Score(e) => Self::Score(e),
+            IoError::Config(e) => Self::from(e),
+            IoError::Usage(message) => Self::Usage(message),
+            IoError::Filter(e) => Self::Filter(e),
+            IoError::Sensor(e) => Self::Sensor(e),
+            IoError::Motion(e) => Self::Motion(e),
+            IoError::Math(e) => Self::Math(e),
+            IoError::Imm(e) => Self::Imm(e),
+            IoError::Tracker(e) => Self::Tracker(e),
+            IoError::Smooth {
+                track,
+                step,
+                time,
+                message,
+            } => Self::Smooth {
+                track,
+                step,
+                time,
+                message,
+            },
             // `IoError` is `#[non_exhaustive]`: a variant added later keeps its text.
             e => Self::Usage(e.to_string()),
         }

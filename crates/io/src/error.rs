@@ -58,6 +58,42 @@ pub enum IoError {
     /// A tracks CSV that cannot be read (as `argus score` reads it).
     #[error("score: {0}")]
     Score(#[from] argus_score::ScoreError),
+    /// The configuration cannot be read or is bad ([`argus_config::load`]), as it prints.
+    #[error(transparent)]
+    Config(#[from] argus_config::ConfigError),
+    /// A request the job cannot do (an estimator not built for the plots' size).
+    #[error("{0}")]
+    Usage(String),
+    /// A filter step failed.
+    #[error("filter: {0}")]
+    Filter(#[from] argus_filters::FilterError),
+    /// A measurement model rejected a value.
+    #[error("sensor: {0}")]
+    Sensor(#[from] argus_sensors::SensorError),
+    /// A motion model rejected a value.
+    #[error("motion model: {0}")]
+    Motion(#[from] argus_motion_models::MotionError),
+    /// A numerical check failed.
+    #[error("math: {0}")]
+    Math(#[from] argus_core_math::MathError),
+    /// An IMM or multi-IMM rejected a value.
+    #[error("imm: {0}")]
+    Imm(#[from] argus_imm::ImmError),
+    /// The multi-target tracker rejected a configuration or a plot.
+    #[error("tracker: {0}")]
+    Tracker(#[from] argus_tracker::TrackerError),
+    /// Smoothing a track failed (`argus track --smooth`): nothing is written.
+    #[error("smoothing track {track}: step {step} (t = {time} s): {message}")]
+    Smooth {
+        /// The track (1 for the single-target job).
+        track: u64,
+        /// The step (0 is the track's first estimate; rows of one time are one step).
+        step: usize,
+        /// The step's time (s).
+        time: f64,
+        /// What failed.
+        message: String,
+    },
 }
 
 impl IoError {

@@ -19,5 +19,6 @@ pub mod output;
 pub mod plotfile;
 pub mod rows;
 pub mod source;
+pub mod track;
 
 pub use crate::error::IoError;

@@ -3,13 +3,13 @@
 
 use std::path::Path;
 
+use crate::plotfile::FilePlot;
 use argus_config::Reference;
-use argus_io::plotfile::FilePlot;
 use argus_sensors::Measurement;
 use argus_tracker::{Plot, SessionError, TrackerError};
 
 use super::smooth::Smoothing;
-use crate::error::CliError;
+use crate::IoError;
 
 /// Where the run's inputs and outputs are, for errors and the summary.
 pub(super) struct Files<'a> {
@@ -24,17 +24,35 @@ pub(super) struct Files<'a> {
     /// `--smooth` / `--smooth-lag` ([`super::multi_smooth`]).
     pub(super) smoothing: Option<Smoothing>,
     /// Times the tracker advances to with no plot (an ASTERIX file's CAT034 messages,
-    /// [`argus_io::source`]), in order.
+    /// [`crate::source`]), in order.
     pub(super) markers: &'a [f64],
+}
+
+impl<'a> Files<'a> {
+    /// The files of `names`, no markers.
+    pub(super) fn new(
+        names: super::Names<'a>,
+        reference: Option<&'a Reference>,
+        smoothing: Option<Smoothing>,
+    ) -> Self {
+        Self {
+            config: names.config,
+            plots: names.plots,
+            out: names.out,
+            reference,
+            smoothing,
+            markers: &[],
+        }
+    }
 }
 
 /// The tracker's plot of a file plot: polar plots go in as they are (the tracker converts
 /// them with its sensor's noise, or the EKF and multi-IMM use them directly), Cartesian
 /// reports with their covariance.
-pub(super) fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliError> {
+pub(super) fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, IoError> {
     match p.measurement() {
         Measurement::Cartesian2(_) | Measurement::Polar(_) => Ok(p.plot),
-        Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(CliError::input(
+        Measurement::Spherical(_) | Measurement::Cartesian3(_) => Err(IoError::input(
             files.plots,
             Some(p.line),
             None,
@@ -44,7 +62,7 @@ pub(super) fn tracker_plot(files: &Files<'_>, p: &FilePlot) -> Result<Plot, CliE
 }
 
 /// A session's error: a [`TrackerError`] about a plot at that plot's line (its tag).
-pub(super) fn plot_error(files: &Files<'_>, e: SessionError) -> CliError {
+pub(super) fn plot_error(files: &Files<'_>, e: SessionError) -> IoError {
     let SessionError {
         error: e,
         tag: line,
@@ -58,7 +76,7 @@ pub(super) fn plot_error(files: &Files<'_>, e: SessionError) -> CliError {
         TrackerError::NonFinite { .. }
         | TrackerError::PlotCovariance { .. }
         | TrackerError::MixedScan { .. } => None,
-        _ => return CliError::Tracker(e),
+        _ => return IoError::Tracker(e),
     };
-    CliError::input(files.plots, line, field, format!("tracker: {e}"))
+    IoError::input(files.plots, line, field, format!("tracker: {e}"))
 }

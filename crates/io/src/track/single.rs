@@ -5,20 +5,20 @@
 use argus_tracker::single::{Estimate, Estimates, EstimatorSpec, SingleTarget, TaggedPlot};
 
 use super::start::Ctx;
-use crate::error::CliError;
-use argus_io::plotfile::FilePlot;
-use argus_io::rows::{Column, Point, TrackRows};
+use crate::IoError;
+use crate::plotfile::FilePlot;
+use crate::rows::{Column, Point, TrackRows};
 
 /// Runs `estimator` over `plots` (in file order, already checked by `plotfile`).
 ///
 /// # Errors
-/// [`CliError::Input`] naming the plot file's line of a plot the estimator cannot use, or
-/// the configuration's key of a missing σ; [`CliError::Smooth`]; the estimators' errors.
+/// [`IoError::Input`] naming the plot file's line of a plot the estimator cannot use, or
+/// the configuration's key of a missing σ; [`IoError::Smooth`]; the estimators' errors.
 pub(super) fn run(
     ctx: &Ctx<'_>,
     estimator: &EstimatorSpec,
     plots: &[FilePlot],
-) -> Result<TrackRows, CliError> {
+) -> Result<TrackRows, IoError> {
     let engine = SingleTarget::new(estimator.clone(), ctx.engine_sensors(), ctx.smoothing);
     let tagged: Vec<TaggedPlot> = plots
         .iter()

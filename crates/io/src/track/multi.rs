@@ -4,24 +4,24 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::output::{AtomicFile, write_atomic};
+use crate::plotfile::FilePlot;
+use crate::rows::{Column, TrackRows};
 use argus_config::MultiTarget;
-use argus_io::output::{AtomicFile, write_atomic};
-use argus_io::plotfile::FilePlot;
-use argus_io::rows::{Column, TrackRows};
 use argus_tracker::{AssociationConfig, EstimatorConfig, Input, Output, Session, TrackerConfig};
 
 use super::multi_files::{Files, plot_error, tracker_plot};
 use super::multi_smooth::Recorded;
 use super::smooth::Smoothing;
 use super::tally::{Counts, Tally};
-use crate::error::CliError;
+use crate::IoError;
 
 /// Gives the sensors the rotations an ASTERIX file's CAT034 messages state (the
 /// configured direction kept; a geodetic site's `north_time` moved by its grid rotation
 /// `γ`, as a configured one is, [`argus_config::turned`]).
 pub(super) fn set_rotations(
     m: &mut MultiTarget,
-    rotations: &[argus_io::source::MessageRotation],
+    rotations: &[crate::source::MessageRotation],
     grid_rotations: &[(u32, f64)],
 ) {
     for r in rotations {
@@ -61,14 +61,14 @@ pub(super) fn columns(c: &TrackerConfig) -> Vec<Column> {
 /// reused buffer, left empty).
 ///
 /// # Errors
-/// [`CliError::Input`] naming the plot's line for a plot the tracker refuses.
+/// [`IoError::Input`] naming the plot's line for a plot the tracker refuses.
 pub(super) fn push(
     session: &mut Session,
     tally: &mut Tally<'_>,
     files: &Files<'_>,
     input: Input,
     outputs: &mut Vec<Output>,
-) -> Result<(), CliError> {
+) -> Result<(), IoError> {
     let result = session.push(input, outputs);
     for o in outputs.drain(..) {
         match o {
@@ -81,7 +81,7 @@ pub(super) fn push(
 
 /// `<out>.summary.json`.
 #[derive(Debug, serde::Serialize)]
-struct Summary<'a> {
+pub(super) struct Summary<'a> {
     command: &'static str,
     config: String,
     plots_file: String,
@@ -103,28 +103,57 @@ struct Summary<'a> {
 }
 
 /// The summary's path beside the tracks file: `<stem>.summary.json`.
-fn summary_path(out: &Path) -> PathBuf {
+pub(super) fn summary_path(out: &Path) -> PathBuf {
     out.with_extension("summary.json")
 }
 
 /// Tracked rows are written once this much text is held (bytes).
 const FLUSH_BYTES: usize = 1 << 16;
 
-/// Runs the tracker over `plots` (read and checked one at a time by `plotfile`), writing
-/// the rows as the scans and sectors conclude: memory does not grow with the file (but
-/// with `--smooth`, which holds every confirmed track's rows until the end). The tracks
-/// CSV goes to a temporary renamed at the end, so a bad plot anywhere stops the run with
-/// nothing written; then the summary, atomically. Returns the number of rows and the
-/// summary's path.
+/// Where [`run`] writes rows as they conclude: a file, or nowhere (`()`: every row kept).
+pub(super) trait Sink {
+    /// Writes `rows`' held text out when there is enough of it.
+    ///
+    /// # Errors
+    /// [`IoError::Io`].
+    fn flush(&mut self, rows: &mut TrackRows) -> Result<(), IoError>;
+}
+
+impl Sink for AtomicFile {
+    fn flush(&mut self, rows: &mut TrackRows) -> Result<(), IoError> {
+        if rows.pending() >= FLUSH_BYTES {
+            rows.write_to(self)?;
+        }
+        Ok(())
+    }
+}
+
+impl Sink for () {
+    fn flush(&mut self, _: &mut TrackRows) -> Result<(), IoError> {
+        Ok(())
+    }
+}
+
+/// What [`run`] gives back: the rows not yet written (all of them without a file), the
+/// sink, and the summary.
+pub(super) type Ran<'a, S> = (TrackRows, S, Summary<'a>);
+
+/// Runs the tracker over `plots` (read and checked one at a time by `plotfile`). With a
+/// file (`open` gives one, once the tracker is built), the rows are written to it as the
+/// scans and sectors conclude: memory does not grow with the file (but with `--smooth`,
+/// which holds every confirmed track's rows until the end); the caller writes the rest
+/// and commits it. Without one, every row is kept. Returns the rows held, the file and
+/// the summary.
 ///
 /// # Errors
-/// [`CliError::Input`] naming the plot file's line for a bad plot or one the tracker
-/// rejects; [`CliError::Io`].
-pub(super) fn run(
-    m: &MultiTarget,
+/// [`IoError::Input`] naming the plot file's line for a bad plot or one the tracker
+/// rejects; [`IoError::Io`].
+pub(super) fn run<'m, S: Sink>(
+    m: &'m MultiTarget,
     files: &Files<'_>,
-    plots: impl Iterator<Item = Result<FilePlot, CliError>>,
-) -> Result<(usize, PathBuf), CliError> {
+    plots: impl Iterator<Item = Result<FilePlot, IoError>>,
+    open: impl FnOnce() -> Result<S, IoError>,
+) -> Result<Ran<'m, S>, IoError> {
     let c = &m.config;
     let mut recorded = match files.smoothing {
         Some(_) => Some(Recorded::new(c)?),
@@ -136,7 +165,7 @@ pub(super) fn run(
         columns.extend(rec.columns());
     }
     let mut out = TrackRows::with_reference(columns, files.reference);
-    let mut file = AtomicFile::create(files.out)?;
+    let mut file = open()?;
     let mut tally = Tally::new(&mut out, recorded.as_mut());
     let mut outputs = Vec::new();
     let mut n_plots = 0;
@@ -156,9 +185,7 @@ pub(super) fn run(
         let input = Input::Plot { plot, tag: p.line };
         push(&mut session, &mut tally, files, input, &mut outputs)?;
         n_plots += 1;
-        if tally.out.pending() >= FLUSH_BYTES {
-            tally.out.write_to(&mut file)?;
-        }
+        file.flush(tally.out)?;
     }
     for m in markers {
         push(
@@ -176,8 +203,6 @@ pub(super) fn run(
         _ => None,
     };
     let rows = out.rows();
-    out.write_to(&mut file)?;
-    file.commit()?;
     let summary = Summary {
         command: "track",
         config: files.config.display().to_string(),
@@ -200,9 +225,27 @@ pub(super) fn run(
         smoothing: files.smoothing.map(Smoothing::describe),
         smoothed_tracks,
     };
+    Ok((out, file, summary))
+}
+
+/// [`run`] writing the tracks CSV to `files.out` (a temporary renamed at the end, so a
+/// bad plot anywhere stops the run with nothing written), then the summary, atomically.
+/// Returns the number of rows and the summary's path.
+///
+/// # Errors
+/// As [`run`]; [`IoError::Io`] writing the files.
+pub(super) fn run_to_files(
+    m: &MultiTarget,
+    files: &Files<'_>,
+    plots: impl Iterator<Item = Result<FilePlot, IoError>>,
+) -> Result<(usize, PathBuf), IoError> {
+    let (mut out, mut file, summary) = run(m, files, plots, || AtomicFile::create(files.out))?;
+    let rows = out.rows();
+    out.write_to(&mut file)?;
+    file.commit()?;
     let path = summary_path(files.out);
     let json = serde_json::to_string_pretty(&summary)
-        .map_err(|e| CliError::io(&path, std::io::Error::other(e.to_string())))?;
+        .map_err(|e| IoError::io(&path, std::io::Error::other(e.to_string())))?;
     write_atomic(&path, json.as_bytes())?;
     Ok((rows, path))
 }

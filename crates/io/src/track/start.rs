@@ -7,7 +7,7 @@ use std::path::Path;
 use argus_tracker::single::{MAX_MODELS, OneRadar, SingleError, SingleSensor};
 
 use super::smooth::{SmoothFailure as _, Smoothing};
-use crate::error::CliError;
+use crate::IoError;
 use argus_config::{Reference, Sensor};
 
 /// The files and sensors of a single-target run, to name errors and write rows.
@@ -35,23 +35,23 @@ impl Ctx<'_> {
             .collect()
     }
 
-    /// The command's error for the engine's `e`: [`CliError::Input`] at the plot file's
-    /// line (a plot's tag is its line) or the configuration's key, [`CliError::Smooth`]
+    /// The command's error for the engine's `e`: [`IoError::Input`] at the plot file's
+    /// line (a plot's tag is its line) or the configuration's key, [`IoError::Smooth`]
     /// for track 1, the models' errors as they are.
-    pub(super) fn error(&self, e: SingleError) -> CliError {
+    pub(super) fn error(&self, e: SingleError) -> IoError {
         let (config, plots) = (self.config, self.plots_path);
         let one_radar = |estimator: OneRadar| match estimator {
             OneRadar::MultiImm => "the multi-IMM estimates one polar radar's noise",
             _ => "the aircraft IMM tracks one 2-D radar's polar plots",
         };
         match e {
-            SingleError::UnknownSensor { tag, sensor } => CliError::input(
+            SingleError::UnknownSensor { tag, sensor } => IoError::input(
                 plots,
                 Some(tag),
                 Some("sensor"),
                 format!("unknown sensor {sensor} (not in {})", config.display()),
             ),
-            SingleError::NoPolarSigma { sensor } => CliError::input(
+            SingleError::NoPolarSigma { sensor } => IoError::input(
                 config,
                 None,
                 Some("sigma_range"),
@@ -59,25 +59,25 @@ impl Ctx<'_> {
                     "sensor {sensor} reports polar/spherical plots but has no sigma_range / sigma_azimuth_deg"
                 ),
             ),
-            SingleError::NoElevationSigma { sensor } => CliError::input(
+            SingleError::NoElevationSigma { sensor } => IoError::input(
                 config,
                 None,
                 Some("sigma_elevation_deg"),
                 format!("sensor {sensor} reports spherical plots but has no sigma_elevation_deg"),
             ),
-            SingleError::SensorNoise { sensor, message } => CliError::input(
+            SingleError::SensorNoise { sensor, message } => IoError::input(
                 config,
                 None,
                 Some("sigma_range"),
                 format!("sensor {sensor}: {message}"),
             ),
-            SingleError::WrongDimension { tag } => CliError::input(
+            SingleError::WrongDimension { tag } => IoError::input(
                 plots,
                 Some(tag),
                 None,
                 "plot of another dimension than the file's first plot",
             ),
-            SingleError::ImmNot2D => CliError::input(
+            SingleError::ImmNot2D => IoError::input(
                 config,
                 None,
                 Some("estimator.kind"),
@@ -87,45 +87,45 @@ impl Ctx<'_> {
                 ),
             ),
             SingleError::ModeCount { count } => {
-                CliError::Usage(format!("{count} IMM models: at most {MAX_MODELS}"))
+                IoError::Usage(format!("{count} IMM models: at most {MAX_MODELS}"))
             }
             SingleError::MultiSize { n } => {
-                CliError::Usage(format!("multi-IMM with n = {n} is not built"))
+                IoError::Usage(format!("multi-IMM with n = {n} is not built"))
             }
-            SingleError::TooFewPlots => CliError::input(
+            SingleError::TooFewPlots => IoError::input(
                 plots,
                 None,
                 None,
                 "at least two plots are needed to start a track",
             ),
-            SingleError::Start { tag, source } => CliError::input(
+            SingleError::Start { tag, source } => IoError::input(
                 plots,
                 Some(tag),
                 Some("t"),
                 format!("two-point initialisation: {source}"),
             ),
-            SingleError::AircraftStart { tag, source } => CliError::input(
+            SingleError::AircraftStart { tag, source } => IoError::input(
                 plots,
                 Some(tag),
                 Some("t"),
                 format!("two-point initialisation: {source}"),
             ),
             SingleError::PolarConversion { tag, source } => {
-                CliError::input(plots, Some(tag), Some("range"), source.to_string())
+                IoError::input(plots, Some(tag), Some("range"), source.to_string())
             }
-            // The 3-D conversion's error went through `CliError::Sensor` ("sensor: …").
-            SingleError::SphericalConversion { tag, source } => CliError::input(
+            // The 3-D conversion's error went through `IoError::Sensor` ("sensor: …").
+            SingleError::SphericalConversion { tag, source } => IoError::input(
                 plots,
                 Some(tag),
                 Some("range"),
-                CliError::from(source).to_string(),
+                IoError::from(source).to_string(),
             ),
             SingleError::OtherSensor {
                 tag,
                 estimator,
                 sensor,
                 first,
-            } => CliError::input(
+            } => IoError::input(
                 plots,
                 Some(tag),
                 Some("sensor"),
@@ -139,20 +139,20 @@ impl Ctx<'_> {
                     OneRadar::MultiImm => "a Cartesian report",
                     _ => "not a (range, azimuth) plot",
                 };
-                CliError::input(
+                IoError::input(
                     plots,
                     Some(tag),
                     Some("sensor"),
                     format!("{}: {what}", one_radar(estimator)),
                 )
             }
-            SingleError::FilterStep { tag, source } => CliError::input(
+            SingleError::FilterStep { tag, source } => IoError::input(
                 plots,
                 Some(tag),
                 None,
                 format!("filter update failed: {source}"),
             ),
-            SingleError::ImmStep { tag, source } => CliError::input(
+            SingleError::ImmStep { tag, source } => IoError::input(
                 plots,
                 Some(tag),
                 None,
@@ -163,7 +163,7 @@ impl Ctx<'_> {
             SingleError::Motion(e) => e.into(),
             SingleError::Sensor(e) => e.into(),
             SingleError::Imm(e) => e.into(),
-            other => CliError::Usage(other.to_string()),
+            other => IoError::Usage(other.to_string()),
         }
     }
 }

@@ -4,18 +4,18 @@
 
 use std::path::{Path, PathBuf};
 
-use argus_config::{Job, MultiTarget, Reference};
-use argus_io::plotfile::{self, FilePlot};
-use argus_io::rows::TrackRows;
+use crate::plotfile::{self, FilePlot};
+use crate::rows::TrackRows;
+use argus_config::{Job, Loaded, MultiTarget, Reference};
 use argus_tracker::{Input, Session};
 
 use super::multi;
 use super::multi_files::{Files, tracker_plot};
 use super::tally::Tally;
-use crate::error::CliError;
+use crate::IoError;
 
 /// The multi-target tracker of an `argus track` configuration (one with a `[tracker]`
-/// table), fed plot file text a batch at a time.
+/// table), fed plots (or plot file text) a batch at a time.
 #[derive(Debug, Clone)]
 pub struct TrackStream {
     job: MultiTarget,
@@ -27,13 +27,12 @@ pub struct TrackStream {
 }
 
 impl TrackStream {
-    /// The tracker of the configuration at `config`.
+    /// The tracker of the configuration `loaded`, read from `config` (its name in errors).
     ///
     /// # Errors
-    /// As `argus track` for the configuration; [`CliError::Input`] when it has no
-    /// `[tracker]` table (a single-target configuration).
-    pub fn new(config: &Path) -> Result<Self, CliError> {
-        let loaded = argus_config::load(config)?;
+    /// [`IoError::Tracker`] for a configuration the tracker refuses; [`IoError::Input`]
+    /// when it has no `[tracker]` table (a single-target configuration).
+    pub fn new(loaded: Loaded, config: &Path) -> Result<Self, IoError> {
         match loaded.job {
             Job::Multi(m) => Ok(Self {
                 session: Session::new(m.config.clone())?,
@@ -42,7 +41,7 @@ impl TrackStream {
                 reference: loaded.reference,
                 grid_rotations: loaded.grid_rotations,
             }),
-            Job::Single { .. } => Err(CliError::input(
+            Job::Single { .. } => Err(IoError::input(
                 config,
                 None,
                 Some("tracker"),
@@ -51,24 +50,33 @@ impl TrackStream {
         }
     }
 
-    /// Processes `text`, plot file text (header and rows), called `name` in errors: its
-    /// plots grouped into scans by `(time, sensor)` in order, as `argus track` does.
-    /// Returns the tracks CSV text (header and one row per track per scan). On an error
-    /// the tracker is left as it was before the call.
+    /// Processes `text`, plot file text (header and rows), called `name` in errors, as
+    /// [`Self::process`] its plots; returns the tracks CSV text.
     ///
     /// # Errors
     /// As `argus track` for the plots.
-    pub fn process(&mut self, text: &str, name: &Path) -> Result<String, CliError> {
+    pub fn process_text(&mut self, text: &str, name: &Path) -> Result<String, IoError> {
         let plots = plotfile::read_text(text, name)?;
+        Ok(self.process(&plots, name)?.into_text())
+    }
+
+    /// Processes `plots` (as [`plotfile`] reads them, in order; `name` is their file in
+    /// errors), grouped into scans by `(time, sensor)` in order, as `argus track` does.
+    /// Returns the tracks CSV's rows (one per track per scan). On an error the tracker is
+    /// left as it was before the call.
+    ///
+    /// # Errors
+    /// As `argus track` for the plots.
+    pub fn process(&mut self, plots: &[FilePlot], name: &Path) -> Result<TrackRows, IoError> {
         let before = self.session.clone();
-        let result = self.scans(&plots, name);
+        let result = self.scans(plots, name);
         if result.is_err() {
             self.session = before;
         }
         result
     }
 
-    fn scans(&mut self, plots: &[FilePlot], name: &Path) -> Result<String, CliError> {
+    fn scans(&mut self, plots: &[FilePlot], name: &Path) -> Result<TrackRows, IoError> {
         let files = Files {
             config: &self.config,
             plots: name,
@@ -93,6 +101,6 @@ impl TrackStream {
         // until a later call's plots (or none: the tracker holds it) pass its end.
         let end = Input::EndOfScan;
         multi::push(&mut self.session, &mut tally, &files, end, &mut outputs)?;
-        Ok(out.into_text())
+        Ok(out)
     }
 }

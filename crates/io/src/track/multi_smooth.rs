@@ -69,12 +69,12 @@
 
 use std::collections::BTreeMap;
 
+use crate::rows::{Column, Point, TrackRows};
 use argus_core_math::Gaussian;
 use argus_filters::Kf;
 use argus_imm::{
     AircraftEkf, AircraftEstimate, ForwardRecord, ImmEstimate, MultiImmEstimate, NoiseVariances,
 };
-use argus_io::rows::{Column, Point, TrackRows};
 use argus_motion_models::Cv2D;
 use argus_tracker::{
     DeletionReason, EstimatorConfig, EstimatorState, MULTI_IMM_HYPOTHESES, ModeProbabilities,
@@ -87,7 +87,7 @@ use argus_tracker::smooth::{
 
 use super::names::{reason_name, status_name};
 use super::smooth::SmoothFailure as _;
-use crate::error::CliError;
+use crate::IoError;
 
 /// One row as the tracker gave it.
 #[derive(Debug, Clone)]
@@ -138,9 +138,9 @@ impl Recorded {
     /// An empty record for the tracker configured by `c`.
     ///
     /// # Errors
-    /// [`CliError::Motion`] / [`CliError::Tracker`] for a bad `sigma_a` or `p_stay`
+    /// [`IoError::Motion`] / [`IoError::Tracker`] for a bad `sigma_a` or `p_stay`
     /// (already refused by the configuration).
-    pub(super) fn new(c: &TrackerConfig) -> Result<Self, CliError> {
+    pub(super) fn new(c: &TrackerConfig) -> Result<Self, IoError> {
         let smoother = match c.estimator {
             EstimatorConfig::Kf | EstimatorConfig::Ekf => {
                 Smoother::Rts(Kf::new(Cv2D::discrete(c.sigma_a)?))
@@ -206,13 +206,9 @@ impl Recorded {
     /// `out`; returns the number of tracks smoothed.
     ///
     /// # Errors
-    /// [`CliError::Smooth`] naming the track and step of the first failure (nothing is
+    /// [`IoError::Smooth`] naming the track and step of the first failure (nothing is
     /// written).
-    pub(super) fn smooth_into(
-        self,
-        how: Smoothing,
-        out: &mut TrackRows,
-    ) -> Result<usize, CliError> {
+    pub(super) fn smooth_into(self, how: Smoothing, out: &mut TrackRows) -> Result<usize, IoError> {
         let rows = self.rows;
         let mut by_track: BTreeMap<u64, Vec<usize>> = BTreeMap::new();
         for (i, r) in rows.iter().enumerate() {

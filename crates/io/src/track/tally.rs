@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use argus_io::rows::{Point, TrackRows};
+use crate::rows::{Point, TrackRows};
 use argus_tracker::{Concluded, DeletionReason, SensorId, TrackSnapshot, TrackStatus};
 
 use super::multi_smooth::Recorded;

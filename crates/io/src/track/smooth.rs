@@ -4,22 +4,22 @@
 //!
 //! A track is smoothed whole or not at all: a failed step is a [`Failure`] naming the
 //! step (0 is the track's first estimate) and its time, and the command stops with
-//! [`CliError::Smooth`] naming the track; nothing is written.
+//! [`IoError::Smooth`] naming the track; nothing is written.
 
 use argus_tracker::smooth::Failure;
-pub use argus_tracker::smooth::Smoothing;
+pub(super) use argus_tracker::smooth::Smoothing;
 
-use crate::error::CliError;
+use crate::IoError;
 
 /// A smoothing [`Failure`] as the command's error.
 pub(super) trait SmoothFailure {
     /// The command's error for track `track`.
-    fn into_cli(self, track: u64) -> CliError;
+    fn into_cli(self, track: u64) -> IoError;
 }
 
 impl SmoothFailure for Failure {
-    fn into_cli(self, track: u64) -> CliError {
-        CliError::Smooth {
+    fn into_cli(self, track: u64) -> IoError {
+        IoError::Smooth {
             track,
             step: self.step(),
             time: self.time(),
