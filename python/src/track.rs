@@ -8,7 +8,6 @@ use std::path::{Path, PathBuf};
 
 use argus_config::{ConfigError, Loaded};
 use argus_filters::Lag;
-use argus_io::IoError;
 use argus_io::plotfile::{self, Column, FilePlot};
 use argus_io::rows::ColumnValues;
 use argus_tracker::smooth::Smoothing;
@@ -17,7 +16,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::errors::{Kind, input, raise, rust_name};
-use crate::track_run::{self, Columns, PLOTS};
+use crate::track_run::{self, Columns, PLOTS, io_error};
 
 /// A configuration error as the package's exception (`ArgusOSError` for a file that
 /// cannot be read, `InvalidInputError` otherwise).
@@ -29,19 +28,9 @@ fn config_error(e: &ConfigError) -> PyErr {
     raise(kind, &rust_name("ConfigError", e), e.to_string())
 }
 
-/// A plot table error as the package's exception.
-fn io_error(e: &IoError) -> PyErr {
-    let kind = match e {
-        IoError::Io { .. } => Kind::Io,
-        _ => Kind::InvalidInput,
-    };
-    raise(kind, &rust_name("IoError", e), e.to_string())
-}
-
-/// A configuration: its text and the name of its file in errors (`config.toml` for text
-/// and dicts), loaded.
+/// A configuration: the name of its file in errors (`config.toml` for text and dicts),
+/// and the configuration loaded.
 struct Config {
-    text: String,
     name: PathBuf,
     loaded: Loaded,
 }
@@ -65,7 +54,7 @@ fn config(kind: &str, value: &str) -> PyResult<Config> {
         other => return Err(input(format!("argument 'config': unknown kind {other:?}"))),
     };
     let loaded = argus_config::load_text(&text, &name).map_err(|e| config_error(&e))?;
-    Ok(Config { text, name, loaded })
+    Ok(Config { name, loaded })
 }
 
 /// A table column's values, owned (from a float64 / int64 array or a list of str).
@@ -190,7 +179,7 @@ pub(crate) fn track_columns<'py>(
     let cfg = config(config_kind, config_value)?;
     let plots = plots(&names, &columns)?;
     let (table, summary) =
-        py.detach(|| track_run::run_plots(&cfg.loaded, &cfg.text, &cfg.name, &plots, smoothing))?;
+        py.detach(|| track_run::run_plots(&cfg.loaded, &cfg.name, plots, smoothing))?;
     let summary = match summary {
         Some(mut doc) => {
             if let Some(m) = doc.as_object_mut() {
@@ -240,7 +229,7 @@ impl TrackerStream {
     fn new(kind: &str, value: &str) -> PyResult<Self> {
         let cfg = config(kind, value)?;
         Ok(Self {
-            inner: track_run::Stream::new(cfg.loaded, &cfg.text, &cfg.name)?,
+            inner: track_run::Stream::new(cfg.loaded, &cfg.name)?,
         })
     }
 
