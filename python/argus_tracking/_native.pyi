@@ -1,7 +1,7 @@
 """Type stubs of the native module (the Rust side of argus_tracking)."""
 
 from os import PathLike
-from typing import Any, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Dict, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -203,17 +203,19 @@ class DifferenceImm(ImmBase):
     ) -> None: ...
 
 class TrackerStream:
-    def __init__(self, config: _Path) -> None: ...
-    def process(self, text: str, name: str) -> str: ...
+    def __init__(self, kind: str, value: str) -> None: ...
+    def process(self, names: Sequence[str], columns: Sequence[Any]) -> Dict[str, Any]: ...
 
-def track_files(
-    config: _Path,
-    plots: _Path,
-    out: _Path,
+def track_columns(
+    names: Sequence[str],
+    columns: Sequence[Any],
+    config_kind: str,
+    config_value: str,
     smooth: bool = False,
     smooth_lag: Optional[int] = None,
     smooth_lag_seconds: Optional[float] = None,
-) -> Tuple[int, Optional[str]]: ...
+) -> Tuple[Dict[str, Any], Optional[Dict[str, Any]]]: ...
+def tracks_text_columns(text: str) -> Dict[str, Any]: ...
 def toml_from_json(json: str) -> str: ...
 def list_scenarios_json() -> str: ...
 def run_scenario_json(

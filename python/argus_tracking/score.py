@@ -9,17 +9,18 @@ import os
 from typing import Any, Optional, Union
 
 from . import _native
-from .tracking import plots_text
+from .tracking import _native_columns
 
 Table = Union[str, "os.PathLike[str]", Any]
 
 
 def _table(table: Table, name: str) -> tuple:
     """A path as ``("path", p)``, a table (structured array, DataFrame, dict of columns)
-    as ``("csv", text, name)``."""
+    as ``("columns", names, columns, name)``."""
     if isinstance(table, (str, os.PathLike)):
         return ("path", os.fspath(table))
-    return ("csv", plots_text(table, name), name)
+    names, columns = _native_columns(table, name)
+    return ("columns", names, columns, name)
 
 
 def score_tracks(

@@ -12,17 +12,14 @@ plot file (line 1 is the header, so row ``i`` is line ``i + 2``) and the field.
 
 from __future__ import annotations
 
-import csv
-import io
 import json
 import os
-import tempfile
 from typing import Any, Optional, Union
 
 import numpy as np
 
 from . import _native
-from .errors import ArgusError, InvalidInputError
+from .errors import InvalidInputError
 
 #: Tracks CSV columns that hold text or integers; every other column is float64.
 _TEXT = {"status": "U20", "reason": "U20"}
@@ -49,19 +46,9 @@ def _columns(plots: Any, name: str = "plots") -> "tuple[list[str], list[Any]]":
     )
 
 
-def _cell(v: Any) -> str:
-    if isinstance(v, (float, np.floating)):
-        return repr(float(v))
-    if isinstance(v, (bool, np.bool_)):
-        return str(int(v))
-    if isinstance(v, (int, np.integer)):
-        return str(int(v))
-    return str(v)
-
-
-def plots_text(plots: Any, name: str = "plots") -> str:
-    """The CSV text of a table (a plot table, or the tracks / truth of ``score_tracks``),
-    floats written so they read back exactly; ``name`` is the argument named in errors."""
+def _native_columns(plots: Any, name: str = "plots") -> "tuple[list[str], list[Any]]":
+    """The column names and values of a table as the native module takes them: float64 or
+    int64 arrays (booleans as integers), other columns as lists of str."""
     names, cols = _columns(plots, name)
     lengths = {len(c) for c in cols}
     if len(lengths) > 1:
@@ -69,30 +56,27 @@ def plots_text(plots: Any, name: str = "plots") -> str:
             f"argument '{name}': columns of different lengths {sorted(lengths)}",
             "argus_python::InputError",
         )
-    out = io.StringIO()
-    out.write(",".join(names) + "\n")
-    text_cols = [[_cell(v) for v in (c.tolist() if hasattr(c, "tolist") else c)] for c in cols]
-    for row in zip(*text_cols):
-        out.write(",".join(row) + "\n")
-    return out.getvalue()
+    out = []
+    for c in cols:
+        a = np.asarray(c)
+        if a.dtype.kind == "f":
+            out.append(np.ascontiguousarray(a, dtype=np.float64))
+        elif a.dtype.kind in "iub":
+            out.append(np.ascontiguousarray(a, dtype=np.int64))
+        else:
+            out.append([str(v) for v in a.tolist()])
+    return names, out
 
 
-def tracks_table(text: str, as_pandas: bool = False) -> Any:
-    """A tracks CSV text as a numpy structured array (or a pandas DataFrame)."""
-    reader = csv.reader(io.StringIO(text))
-    header = next(reader, [])
-    rows = list(reader)
-    n = len(rows)
+def _table(columns: "dict[str, Any]", as_pandas: bool) -> Any:
+    """The tracks table of the native module's columns (a numpy structured array, or a
+    pandas DataFrame)."""
+    header = list(columns)
+    n = len(next(iter(columns.values()))) if columns else 0
     dtype = [(h, _TEXT.get(h, "i8" if h in _INT else "f8")) for h in header]
     table = np.empty(n, dtype=dtype)
-    for j, (h, dt) in enumerate(dtype):
-        col = [r[j] for r in rows]
-        if dt == "f8":
-            table[h] = [float(v) if v != "" else np.nan for v in col]
-        elif dt == "i8":
-            table[h] = [int(v) for v in col]
-        else:
-            table[h] = col
+    for h in header:
+        table[h] = columns[h]
     if as_pandas:
         import pandas as pd
 
@@ -100,37 +84,33 @@ def tracks_table(text: str, as_pandas: bool = False) -> Any:
     return table
 
 
+def tracks_table(text: str, as_pandas: bool = False) -> Any:
+    """A tracks CSV text (a file of ``argus track``) as a numpy structured array (or a
+    pandas DataFrame), read by the native module."""
+    return _table(_native.tracks_text_columns(text), as_pandas)
+
+
 def _is_pandas(obj: Any) -> bool:
     return type(obj).__module__.startswith("pandas")
 
 
-def _config_file(config: Config, folder: str) -> str:
-    """A path to the configuration: a file as given, or text / a dict written to
-    ``folder``."""
+def _config(config: Config) -> "tuple[str, str]":
+    """The configuration as the native module takes it: ``("path", p)`` for a file (read
+    in Rust), ``("text", toml)`` or ``("json", text)`` for a dict (turned into TOML in
+    Rust)."""
     if isinstance(config, dict):
-        text = _native.toml_from_json(json.dumps(config))
-    elif isinstance(config, os.PathLike):
-        return os.fspath(config)
-    elif isinstance(config, str):
+        return ("json", json.dumps(config))
+    if isinstance(config, os.PathLike):
+        return ("path", os.fspath(config))
+    if isinstance(config, str):
         if "\n" not in config and "=" not in config and os.path.exists(config):
-            return config
-        text = config
-    else:
-        raise InvalidInputError(
-            "argument 'config': expected TOML text, a path or a dict, got "
-            f"{type(config).__name__}",
-            "argus_python::InputError",
-        )
-    path = os.path.join(folder, "config.toml")
-    with open(path, "w", encoding="utf-8") as f:
-        f.write(text)
-    return path
-
-
-def _clean(e: ArgusError, folder: str) -> ArgusError:
-    """The same error with the temporary folder's path removed from its message."""
-    msg = e.message.replace(folder + os.sep, "")
-    return type(e)(msg, e.rust_error)
+            return ("path", config)
+        return ("text", config)
+    raise InvalidInputError(
+        "argument 'config': expected TOML text, a path or a dict, got "
+        f"{type(config).__name__}",
+        "argus_python::InputError",
+    )
 
 
 def track(
@@ -158,25 +138,10 @@ def track(
         flags["smooth_lag_seconds"] = float(smooth)
     if as_pandas is None:
         as_pandas = _is_pandas(plots)
-    text = plots_text(plots)
-    with tempfile.TemporaryDirectory(prefix="argus-track-") as folder:
-        try:
-            cfg = _config_file(config, folder)
-            plots_path = os.path.join(folder, "plots")
-            with open(plots_path, "w", encoding="utf-8") as f:
-                f.write(text)
-            out = os.path.join(folder, "tracks.csv")
-            _, summary_path = _native.track_files(cfg, plots_path, out, **flags)
-        except ArgusError as e:
-            raise _clean(e, folder) from None
-        with open(out, encoding="utf-8") as f:
-            table = tracks_table(f.read(), as_pandas)
-        doc = None
-        if summary and summary_path is not None:
-            with open(summary_path, encoding="utf-8") as f:
-                doc = json.load(f)
-            for key in ("config", "plots_file", "tracks_file"):
-                doc.pop(key, None)
+    names, cols = _native_columns(plots)
+    kind, value = _config(config)
+    columns, doc = _native.track_columns(names, cols, kind, value, **flags)
+    table = _table(columns, as_pandas)
     return (table, doc) if summary else table
 
 
@@ -191,16 +156,11 @@ class Tracker:
     """
 
     def __init__(self, config: Config) -> None:
-        with tempfile.TemporaryDirectory(prefix="argus-tracker-") as folder:
-            try:
-                self._stream = _native.TrackerStream(_config_file(config, folder))
-            except ArgusError as e:
-                raise _clean(e, folder) from None
+        self._stream = _native.TrackerStream(*_config(config))
 
     def process(self, plots: Any, *, as_pandas: Optional[bool] = None) -> Any:
         """Processes the scans in ``plots``; returns their rows (structured array or
         DataFrame). The GIL is released."""
         if as_pandas is None:
             as_pandas = _is_pandas(plots)
-        text = self._stream.process(plots_text(plots), "plots")
-        return tracks_table(text, as_pandas)
+        return _table(self._stream.process(*_native_columns(plots)), as_pandas)

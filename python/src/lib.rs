@@ -6,7 +6,8 @@
 //!   (`filter_build` makes them, `filter_core` runs them, `memo_run` is the KF's
 //!   batch run reusing its covariance recursion).
 //! - `imm`: `Imm`, `MultiImm`, `DifferenceImm`.
-//! - `track`: `argus track`'s pipeline on files and as a stream.
+//! - `track`: `argus track`'s pipeline on plot tables and as a stream (`track_run`
+//!   calls the job runner).
 //! - `scenarios`: the scenario list and campaigns.
 //! - `metrics`: NEES / NIS, chi-square intervals, OSPA, GOSPA.
 //! - `score`: the real-traffic track scoring (`argus score`).
@@ -26,6 +27,7 @@ mod run_io;
 mod scenarios;
 mod score;
 mod track;
+mod track_run;
 
 use pyo3::prelude::*;
 
@@ -41,7 +43,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<imm::MultiImm_>()?;
     m.add_class::<imm::DifferenceImm_>()?;
     m.add_class::<track::TrackerStream>()?;
-    m.add_function(wrap_pyfunction!(track::track_files, m)?)?;
+    m.add_function(wrap_pyfunction!(track::track_columns, m)?)?;
+    m.add_function(wrap_pyfunction!(track::tracks_text_columns, m)?)?;
     m.add_function(wrap_pyfunction!(track::toml_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(scenarios::list_scenarios_json, m)?)?;
     m.add_function(wrap_pyfunction!(scenarios::run_scenario_json, m)?)?;

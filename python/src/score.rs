@@ -1,6 +1,5 @@
 //! Track scoring from Python (`score_tracks()`): `argus-score` on a tracks table and a
-//! truth table (files, or CSV text made by the Python side from a DataFrame / structured
-//! array / dict), returning the report `argus score` writes, as JSON text.
+//! truth table (files, or the columns of a DataFrame / structured array / dict), returning the report `argus score` writes, as JSON text.
 
 use std::path::Path;
 
@@ -10,6 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::errors::{Kind, input, raise, rust_name};
+use crate::track::Owned;
 
 /// A scoring error as the package's exception: a file that cannot be read as
 /// `ArgusOSError`, everything else (a malformed row, a bad parameter) as
@@ -22,10 +22,29 @@ fn score_error(e: &ScoreError) -> PyErr {
     raise(kind, &rust_name("ScoreError", e), e.to_string())
 }
 
-/// One table: `("path", path)` or `("csv", text, name)`.
+/// One table: `("path", path)` or `("columns", names, columns, name)` (columns as
+/// `track_columns` takes them).
 enum Table {
     Path(std::path::PathBuf),
     Csv(String, String),
+}
+
+/// CSV text of a table given as columns, for the score crate's readers (their checks and
+/// errors, `name:LINE: field 'f'`, row `i` being line `i + 2`).
+///
+/// TODO: build `argus_score`'s `TrackHistory` / `TruthPath` from the columns directly,
+/// once its readers' row checks are shared with a column source (as
+/// `argus_io::plotfile::from_columns` does for plots); the text is made here, in Rust.
+fn columns_text(names: &[String], columns: &[Owned]) -> String {
+    let mut text = names.join(",");
+    text.push('\n');
+    let n = columns.first().map_or(0, Owned::len);
+    for i in 0..n {
+        let row: Vec<String> = columns.iter().map(|c| c.cell_text(i)).collect();
+        text.push_str(&row.join(","));
+        text.push('\n');
+    }
+    text
 }
 
 impl Table {
@@ -35,7 +54,18 @@ impl Table {
             .and_then(|k| Ok((k.extract()?, obj.get_item(1)?)))?;
         match kind.as_str() {
             "path" => Ok(Self::Path(value.extract()?)),
-            "csv" => Ok(Self::Csv(value.extract()?, obj.get_item(2)?.extract()?)),
+            "columns" => {
+                let names: Vec<String> = value.extract()?;
+                let columns: Vec<Bound<'_, PyAny>> = obj.get_item(2)?.extract()?;
+                let columns: Vec<Owned> = columns
+                    .iter()
+                    .map(Owned::from_py)
+                    .collect::<PyResult<_>>()?;
+                Ok(Self::Csv(
+                    columns_text(&names, &columns),
+                    obj.get_item(3)?.extract()?,
+                ))
+            }
             other => Err(input(format!(
                 "argument '{what}': unknown table kind {other:?}"
             ))),
@@ -89,7 +119,8 @@ fn config_from(config: &Bound<'_, PyDict>) -> PyResult<ScoreConfig> {
     })
 }
 
-/// Scores `tracks` against `truth` (each `("path", p)` or `("csv", text, name)`) with the
+/// Scores `tracks` against `truth` (each `("path", p)` or `("columns", names, columns,
+/// name)`) with the
 /// parameters in `config`; returns the report as JSON text (the content of `argus score
 /// --out`). The GIL is released while scoring.
 #[pyfunction]

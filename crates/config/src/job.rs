@@ -56,8 +56,22 @@ impl Loaded {
 /// [`ConfigError::Input`] naming the file, the line and the field of the first bad value;
 /// [`ConfigError::Io`]; [`ConfigError::Motion`] for a model the motion-model crate refuses.
 pub fn load(path: &Path) -> Result<Loaded, ConfigError> {
-    let (text, file) = schema::read(path)?;
-    let src = Source { path, text: &text };
+    let text = std::fs::read_to_string(path).map_err(|e| ConfigError::Io {
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    load_text(&text, path)
+}
+
+/// [`load`] on configuration text held in memory; `name` stands for the file's path in
+/// errors (`name:LINE: ...`, exactly as a file at `name` would be reported).
+///
+/// # Errors
+/// As [`load`], but never [`ConfigError::Io`].
+pub fn load_text(text: &str, name: &Path) -> Result<Loaded, ConfigError> {
+    let path = name;
+    let file = schema::parse(text, path)?;
+    let src = Source { path, text };
     let reference = geo::reference(src, file.reference.as_ref())?;
     let sensors = spec::sensors(src, &file.sensors, reference.as_ref())?;
     let grid_rotations = sensors

@@ -22,6 +22,6 @@ mod tracker_errors;
 
 pub use crate::error::{ConfigError, Location};
 pub use crate::geo::{Reference, to_reference};
-pub use crate::job::{Job, Loaded, load};
+pub use crate::job::{Job, Loaded, load, load_text};
 pub use crate::spec::{Sensor, turned};
 pub use crate::tracker_config::{DEFAULT_MAX_EXACT_EVENTS, MultiTarget};

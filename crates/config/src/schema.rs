@@ -211,24 +211,19 @@ impl Source<'_> {
     }
 }
 
-/// Reads and parses `path`; returns its text (for the lines of later errors) and tables.
+/// Parses configuration `text` (the file `path` in errors) into its tables.
 ///
 /// # Errors
-/// [`ConfigError::Io`]; [`ConfigError::Input`] at the line of a syntax error, an unknown key or
+/// [`ConfigError::Input`] at the line of a syntax error, an unknown key or
 /// a wrong type.
-pub(crate) fn read(path: &Path) -> Result<(String, File), ConfigError> {
-    let text = std::fs::read_to_string(path).map_err(|e| ConfigError::Io {
-        path: path.to_path_buf(),
-        source: e,
-    })?;
-    let file = toml::from_str(&text).map_err(|e| {
-        let src = Source { path, text: &text };
+pub(crate) fn parse(text: &str, path: &Path) -> Result<File, ConfigError> {
+    toml::from_str(text).map_err(|e| {
+        let src = Source { path, text };
         ConfigError::input(
             path,
             e.span().map(|s| src.line(&s)),
             None,
             e.message().to_owned(),
         )
-    })?;
-    Ok((text, file))
+    })
 }

@@ -625,3 +625,26 @@ mod tracker_keys {
         }
     }
 }
+
+mod from_text {
+    use super::*;
+
+    #[test]
+    fn text_is_named_as_a_file_is() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../docs/examples/tracker.toml"
+        ))
+        .unwrap();
+        let from_text = crate::load_text(&text, std::path::Path::new("config.toml")).unwrap();
+        assert!(matches!(from_text.job, Job::Multi(_)));
+        let bad = text.replace("max_speed = 350.0", "max_speed = -1.0");
+        let e = crate::load_text(&bad, std::path::Path::new("config.toml")).unwrap_err();
+        let via_file = load_text(&bad).unwrap_err();
+        assert_eq!(at(&e), at(&via_file));
+        assert!(e.to_string().starts_with("config.toml:"), "{e}");
+        // A file that cannot be read is still an I/O error naming it.
+        let missing = load(std::path::Path::new("no/such/config.toml")).unwrap_err();
+        assert!(matches!(missing, ConfigError::Io { .. }), "{missing}");
+    }
+}

@@ -207,70 +207,7 @@ impl<R: std::io::Read> PlotReader<R> {
     fn new(mut rdr: csv::Reader<R>, path: &Path) -> Result<Self, IoError> {
         let headers = rdr.headers().map_err(|e| csv_error(path, e))?.clone();
         let cols: Vec<String> = headers.iter().map(str::to_owned).collect();
-        for c in &cols {
-            if !KNOWN.contains(&c.as_str()) {
-                return Err(IoError::input(
-                    path,
-                    Some(1),
-                    Some(c),
-                    format!("unknown column (known: {})", KNOWN.join(", ")),
-                ));
-            }
-        }
-        let idx = |name: &str| cols.iter().position(|c| c == name);
-        for name in ["t", "sensor"] {
-            if idx(name).is_none() {
-                return Err(IoError::input(
-                    path,
-                    Some(1),
-                    Some(name),
-                    "required column is missing",
-                ));
-            }
-        }
-        let polar = ["range", "azimuth", "elevation"]
-            .iter()
-            .any(|c| idx(c).is_some());
-        let cart = [
-            "x", "y", "z", "r_xx", "r_xy", "r_yy", "r_xz", "r_yz", "r_zz",
-        ]
-        .iter()
-        .any(|c| idx(c).is_some());
-        let three_d = ["elevation", "z", "r_xz", "r_yz", "r_zz"]
-            .iter()
-            .any(|c| idx(c).is_some());
-        let layout = match (polar, cart, three_d) {
-            (true, false, false) => Layout::Polar,
-            (true, false, true) => Layout::Spherical,
-            (false, true, false) => Layout::Cartesian2,
-            (false, true, true) => Layout::Cartesian3,
-            (true, true, _) => {
-                return Err(IoError::input(
-                    path,
-                    Some(1),
-                    None,
-                    "a file holds either polar/spherical (range, azimuth[, elevation]) or Cartesian (x, y[, z]) plots, not both",
-                ));
-            }
-            (false, false, _) => {
-                return Err(IoError::input(
-                    path,
-                    Some(1),
-                    None,
-                    "no measurement columns: expected range,azimuth[,elevation] or x,y,r_xx,r_xy,r_yy (3-D: x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz)",
-                ));
-            }
-        };
-        for name in layout.all_columns() {
-            if idx(name).is_none() {
-                return Err(IoError::input(
-                    path,
-                    Some(1),
-                    Some(name),
-                    "required column is missing",
-                ));
-            }
-        }
+        let layout = layout_of(&cols, path)?;
         Ok(Self {
             rdr,
             path: path.to_path_buf(),
@@ -294,114 +231,315 @@ impl<R: std::io::Read> PlotReader<R> {
         }
         let rec = &self.record;
         let cols = &self.cols;
-        let layout = self.layout;
-        let covariance_cols = layout.columns().1;
-        let idx = |name: &str| cols.iter().position(|c| c == name);
         let line = rec.position().map_or(0, csv::Position::line);
-        let at =
-            |name: &str, message: String| IoError::input(path, Some(line), Some(name), message);
-        let num = |name: &str| -> Result<f64, IoError> {
-            let raw = idx(name).and_then(|i| rec.get(i)).unwrap_or("");
-            let v: f64 = raw
-                .parse()
-                .map_err(|_| at(name, format!("'{raw}' is not a number")))?;
-            if v.is_finite() {
-                Ok(v)
-            } else {
-                Err(at(name, format!("'{raw}' is not finite")))
-            }
+        let cell = |name: &str| {
+            Cell::Text(
+                cols.iter()
+                    .position(|c| c == name)
+                    .and_then(|i| rec.get(i))
+                    .unwrap_or(""),
+            )
         };
-        let time = num(TIME)?;
-        if time < self.last_t {
-            let last_t = self.last_t;
-            return Err(at(
-                TIME,
-                format!("time goes backwards ({time} after {last_t})"),
+        row_plot(path, self.layout, line, &mut self.last_t, cell).map(Some)
+    }
+}
+
+/// The layout of a table with columns `cols` (a plot file called `path` in errors): the
+/// header's checks (known columns, the required ones, one layout).
+fn layout_of(cols: &[String], path: &Path) -> Result<Layout, IoError> {
+    for c in cols {
+        if !KNOWN.contains(&c.as_str()) {
+            return Err(IoError::input(
+                path,
+                Some(1),
+                Some(c),
+                format!("unknown column (known: {})", KNOWN.join(", ")),
             ));
         }
-        self.last_t = time;
-        let raw_sensor = idx(SENSOR).and_then(|i| rec.get(i)).unwrap_or("");
-        let sensor: u32 = raw_sensor.parse().map_err(|_| {
-            at(
-                SENSOR,
-                format!("'{raw_sensor}' is not a sensor id (a non-negative integer)"),
-            )
-        })?;
-        // An empty amplitude field means the plot has none (a file may mix both).
-        let amplitude = if idx(AMPLITUDE)
-            .and_then(|i| rec.get(i))
-            .is_some_and(|raw| !raw.trim().is_empty())
-        {
-            Some(num(AMPLITUDE)?)
-        } else {
-            None
-        };
-        let measurement: Measurement = match layout {
-            Layout::Polar | Layout::Spherical => {
-                let range = num("range")?;
-                if range <= 0.0 {
-                    return Err(at("range", format!("range {range} must be positive")));
-                }
-                let azimuth = num("azimuth")?;
-                let bad = |e: argus_sensors::SensorError| at("range", e.to_string());
-                if layout == Layout::Spherical {
-                    let elevation = num("elevation")?;
-                    if elevation.abs() > std::f64::consts::FRAC_PI_2 {
-                        return Err(at(
-                            "elevation",
-                            format!("elevation {elevation} rad lies outside [-π/2, π/2]"),
-                        ));
-                    }
-                    SphericalMeasurement::new(range, azimuth, elevation)
-                        .map_err(bad)?
-                        .into()
-                } else {
-                    PolarMeasurement::new(range, azimuth).map_err(bad)?.into()
-                }
-            }
-            Layout::Cartesian2 | Layout::Cartesian3 => {
-                // The covariance is read (and checked) before the position, so that a
-                // bad covariance is reported at `r_xx` whatever the position holds.
-                let cov: Vec<f64> = covariance_cols
-                    .iter()
-                    .map(|c| num(c))
-                    .collect::<Result<_, _>>()?;
-                let not_pd = || {
-                    let m = if layout == Layout::Cartesian3 {
-                        "covariance [r_xx r_xy r_xz; r_xy r_yy r_yz; r_xz r_yz r_zz] is not positive definite"
-                    } else {
-                        "covariance [r_xx r_xy; r_xy r_yy] is not positive definite"
-                    };
-                    at("r_xx", m.to_owned())
-                };
-                if layout == Layout::Cartesian3 {
-                    let [xx, xy, xz, yy, yz, zz] = cov[..] else {
-                        return Err(not_pd());
-                    };
-                    let r = Matrix::<3, 3>::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-                    argus_core_math::SpdFactor::new(&r, "plot covariance").map_err(|_| not_pd())?;
-                    let p = Vector::<3>::new(num("x")?, num("y")?, num("z")?);
-                    CartesianMeasurement::new(p, r)
-                        .map_err(|_| not_pd())?
-                        .into()
-                } else {
-                    let [xx, xy, yy] = cov[..] else {
-                        return Err(not_pd());
-                    };
-                    let r = Matrix::<2, 2>::new(xx, xy, xy, yy);
-                    argus_core_math::SpdFactor::new(&r, "plot covariance").map_err(|_| not_pd())?;
-                    let p = Vector::<2>::new(num("x")?, num("y")?);
-                    CartesianMeasurement::new(p, r)
-                        .map_err(|_| not_pd())?
-                        .into()
-                }
-            }
-        };
-        let plot = Plot::new(time, SensorId(sensor), measurement)
-            .and_then(|p| p.with_amplitude(amplitude))
-            .map_err(|e| at(TIME, e.to_string()))?;
-        Ok(Some(FilePlot { line, plot }))
     }
+    let idx = |name: &str| cols.iter().position(|c| c == name);
+    for name in ["t", "sensor"] {
+        if idx(name).is_none() {
+            return Err(IoError::input(
+                path,
+                Some(1),
+                Some(name),
+                "required column is missing",
+            ));
+        }
+    }
+    let polar = ["range", "azimuth", "elevation"]
+        .iter()
+        .any(|c| idx(c).is_some());
+    let cart = [
+        "x", "y", "z", "r_xx", "r_xy", "r_yy", "r_xz", "r_yz", "r_zz",
+    ]
+    .iter()
+    .any(|c| idx(c).is_some());
+    let three_d = ["elevation", "z", "r_xz", "r_yz", "r_zz"]
+        .iter()
+        .any(|c| idx(c).is_some());
+    let layout = match (polar, cart, three_d) {
+        (true, false, false) => Layout::Polar,
+        (true, false, true) => Layout::Spherical,
+        (false, true, false) => Layout::Cartesian2,
+        (false, true, true) => Layout::Cartesian3,
+        (true, true, _) => {
+            return Err(IoError::input(
+                path,
+                Some(1),
+                None,
+                "a file holds either polar/spherical (range, azimuth[, elevation]) or Cartesian (x, y[, z]) plots, not both",
+            ));
+        }
+        (false, false, _) => {
+            return Err(IoError::input(
+                path,
+                Some(1),
+                None,
+                "no measurement columns: expected range,azimuth[,elevation] or x,y,r_xx,r_xy,r_yy (3-D: x,y,z,r_xx,r_xy,r_xz,r_yy,r_yz,r_zz)",
+            ));
+        }
+    };
+    for name in layout.all_columns() {
+        if idx(name).is_none() {
+            return Err(IoError::input(
+                path,
+                Some(1),
+                Some(name),
+                "required column is missing",
+            ));
+        }
+    }
+    Ok(layout)
+}
+
+/// One cell of a plot table: a CSV field's text (empty when the column is absent), or a
+/// value of a column array ([`from_columns`]).
+#[derive(Debug, Clone, Copy)]
+enum Cell<'a> {
+    Text(&'a str),
+    Float(f64),
+    Int(i64),
+}
+
+impl Cell<'_> {
+    /// The sensor id it holds: a non-negative integer that fits a `u32`.
+    fn sensor(self) -> Option<u32> {
+        match self {
+            Self::Text(raw) => raw.parse().ok(),
+            Self::Int(i) => u32::try_from(i).ok(),
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            Self::Float(v) => {
+                (v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&v)).then_some(v as u32)
+            }
+        }
+    }
+
+    /// Whether it holds a value (an empty CSV field holds none).
+    fn is_given(self) -> bool {
+        match self {
+            Self::Text(raw) => !raw.trim().is_empty(),
+            Self::Float(_) | Self::Int(_) => true,
+        }
+    }
+}
+
+impl std::fmt::Display for Cell<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Text(raw) => f.write_str(raw),
+            Self::Float(v) => write!(f, "{v}"),
+            Self::Int(i) => write!(f, "{i}"),
+        }
+    }
+}
+
+/// The checks of one row and its plot: `cell(name)` is the row's cell of column `name`,
+/// `line` its line (named in errors with `path` and the field), `last_t` the previous
+/// row's time (updated).
+fn row_plot<'a>(
+    path: &Path,
+    layout: Layout,
+    line: u64,
+    last_t: &mut f64,
+    cell: impl Fn(&str) -> Cell<'a>,
+) -> Result<FilePlot, IoError> {
+    let covariance_cols = layout.columns().1;
+    let at = |name: &str, message: String| IoError::input(path, Some(line), Some(name), message);
+    let num = |name: &str| -> Result<f64, IoError> {
+        let c = cell(name);
+        let v: f64 = match c {
+            Cell::Text(raw) => raw
+                .parse()
+                .map_err(|_| at(name, format!("'{raw}' is not a number")))?,
+            Cell::Float(v) => v,
+            #[allow(clippy::cast_precision_loss)]
+            Cell::Int(i) => i as f64,
+        };
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(at(name, format!("'{c}' is not finite")))
+        }
+    };
+    let time = num(TIME)?;
+    if time < *last_t {
+        let last_t = *last_t;
+        return Err(at(
+            TIME,
+            format!("time goes backwards ({time} after {last_t})"),
+        ));
+    }
+    *last_t = time;
+    let raw_sensor = cell(SENSOR);
+    let sensor: u32 = raw_sensor.sensor().ok_or_else(|| {
+        at(
+            SENSOR,
+            format!("'{raw_sensor}' is not a sensor id (a non-negative integer)"),
+        )
+    })?;
+    // An empty amplitude field means the plot has none (a file may mix both).
+    let amplitude = if cell(AMPLITUDE).is_given() {
+        Some(num(AMPLITUDE)?)
+    } else {
+        None
+    };
+    let measurement: Measurement = match layout {
+        Layout::Polar | Layout::Spherical => {
+            let range = num("range")?;
+            if range <= 0.0 {
+                return Err(at("range", format!("range {range} must be positive")));
+            }
+            let azimuth = num("azimuth")?;
+            let bad = |e: argus_sensors::SensorError| at("range", e.to_string());
+            if layout == Layout::Spherical {
+                let elevation = num("elevation")?;
+                if elevation.abs() > std::f64::consts::FRAC_PI_2 {
+                    return Err(at(
+                        "elevation",
+                        format!("elevation {elevation} rad lies outside [-π/2, π/2]"),
+                    ));
+                }
+                SphericalMeasurement::new(range, azimuth, elevation)
+                    .map_err(bad)?
+                    .into()
+            } else {
+                PolarMeasurement::new(range, azimuth).map_err(bad)?.into()
+            }
+        }
+        Layout::Cartesian2 | Layout::Cartesian3 => {
+            // The covariance is read (and checked) before the position, so that a
+            // bad covariance is reported at `r_xx` whatever the position holds.
+            let cov: Vec<f64> = covariance_cols
+                .iter()
+                .map(|c| num(c))
+                .collect::<Result<_, _>>()?;
+            let not_pd = || {
+                let m = if layout == Layout::Cartesian3 {
+                    "covariance [r_xx r_xy r_xz; r_xy r_yy r_yz; r_xz r_yz r_zz] is not positive definite"
+                } else {
+                    "covariance [r_xx r_xy; r_xy r_yy] is not positive definite"
+                };
+                at("r_xx", m.to_owned())
+            };
+            if layout == Layout::Cartesian3 {
+                let [xx, xy, xz, yy, yz, zz] = cov[..] else {
+                    return Err(not_pd());
+                };
+                let r = Matrix::<3, 3>::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+                argus_core_math::SpdFactor::new(&r, "plot covariance").map_err(|_| not_pd())?;
+                let p = Vector::<3>::new(num("x")?, num("y")?, num("z")?);
+                CartesianMeasurement::new(p, r)
+                    .map_err(|_| not_pd())?
+                    .into()
+            } else {
+                let [xx, xy, yy] = cov[..] else {
+                    return Err(not_pd());
+                };
+                let r = Matrix::<2, 2>::new(xx, xy, xy, yy);
+                argus_core_math::SpdFactor::new(&r, "plot covariance").map_err(|_| not_pd())?;
+                let p = Vector::<2>::new(num("x")?, num("y")?);
+                CartesianMeasurement::new(p, r)
+                    .map_err(|_| not_pd())?
+                    .into()
+            }
+        }
+    };
+    let plot = Plot::new(time, SensorId(sensor), measurement)
+        .and_then(|p| p.with_amplitude(amplitude))
+        .map_err(|e| at(TIME, e.to_string()))?;
+    Ok(FilePlot { line, plot })
+}
+
+/// A column of a plot table given as values ([`from_columns`]).
+#[derive(Debug, Clone, Copy)]
+pub enum Column<'a> {
+    /// Floating-point values.
+    Float(&'a [f64]),
+    /// Integer values (a sensor id column, or numbers).
+    Int(&'a [i64]),
+    /// Text (the `origin` column, which is not read; or text of numbers).
+    Text(&'a [String]),
+}
+
+impl Column<'_> {
+    fn len(&self) -> usize {
+        match self {
+            Self::Float(v) => v.len(),
+            Self::Int(v) => v.len(),
+            Self::Text(v) => v.len(),
+        }
+    }
+
+    fn cell(&self, i: usize) -> Cell<'_> {
+        match self {
+            Self::Float(v) => Cell::Float(v[i]),
+            Self::Int(v) => Cell::Int(v[i]),
+            Self::Text(v) => Cell::Text(v[i].trim()),
+        }
+    }
+}
+
+/// The plots of a table given as columns (`names[k]` holding `columns[k]`), with exactly
+/// the checks of [`read`] on the equivalent plot file: its header `names`, row `i` its
+/// line `i + 2`; `name` stands for the file's path in errors.
+///
+/// # Errors
+/// [`IoError::Input`] naming `name`, the line and the field, as [`read`]; also when the
+/// names and columns differ in number or the columns in length.
+pub fn from_columns(
+    names: &[&str],
+    columns: &[Column<'_>],
+    name: &Path,
+) -> Result<Vec<FilePlot>, IoError> {
+    let lengths: Vec<usize> = columns.iter().map(Column::len).collect();
+    if names.len() != columns.len() || lengths.windows(2).any(|w| w[0] != w[1]) {
+        return Err(IoError::input(
+            name,
+            None,
+            None,
+            format!(
+                "{} column names for {} columns of lengths {lengths:?}",
+                names.len(),
+                columns.len()
+            ),
+        ));
+    }
+    let cols: Vec<String> = names.iter().map(|n| (*n).to_owned()).collect();
+    let layout = layout_of(&cols, name)?;
+    let mut last_t = f64::NEG_INFINITY;
+    (0..lengths.first().copied().unwrap_or(0))
+        .map(|i| {
+            let cell = |c: &str| {
+                names
+                    .iter()
+                    .position(|n| *n == c)
+                    .map_or(Cell::Text(""), |k| columns[k].cell(i))
+            };
+            row_plot(name, layout, i as u64 + 2, &mut last_t, cell)
+        })
+        .collect()
 }
 
 impl<R: std::io::Read> Iterator for PlotReader<R> {
@@ -609,5 +747,38 @@ mod tests {
         assert_eq!(at(&e), (Some(3), Some("sensor".into())));
         let e = parse("t,sensor,x,y,z,r_xx\n").unwrap_err();
         assert_eq!(at(&e), (Some(1), Some("r_xy".into())));
+    }
+
+    #[test]
+    fn columns_are_read_as_the_equivalent_file() {
+        let text = "t,sensor,range,azimuth,amplitude\n0,1,1000.5,0.25,3\n1,1,2000,-0.5,4.5\n";
+        let file = parse(text).unwrap();
+        let (t, range, az, amp) = ([0.0, 1.0], [1000.5, 2000.0], [0.25, -0.5], [3.0, 4.5]);
+        let names = ["t", "sensor", "range", "azimuth", "amplitude"];
+        let sensor = [1_i64, 1];
+        let cols = [
+            Column::Float(&t),
+            Column::Int(&sensor),
+            Column::Float(&range),
+            Column::Float(&az),
+            Column::Float(&amp),
+        ];
+        let plots = from_columns(&names, &cols, Path::new("plots")).unwrap();
+        assert_eq!(plots, file);
+        // The same checks, named as the file's line and field.
+        let bad_range = [1000.5, -3.0];
+        let mut bad = cols;
+        bad[2] = Column::Float(&bad_range);
+        let e = from_columns(&names, &bad, Path::new("plots")).unwrap_err();
+        assert!(e.to_string().starts_with("plots:3: field 'range'"), "{e}");
+        let bad_sensor = [1_i64, -1];
+        let mut bad = cols;
+        bad[1] = Column::Int(&bad_sensor);
+        let e = from_columns(&names, &bad, Path::new("plots")).unwrap_err();
+        assert_eq!(at(&e), (Some(3), Some("sensor".into())));
+        let e = from_columns(&names[..4], &cols[..4], Path::new("plots"));
+        assert!(e.is_ok());
+        let e = from_columns(&["t", "sensor"], &cols[..2], Path::new("plots")).unwrap_err();
+        assert_eq!(at(&e).0, Some(1));
     }
 }

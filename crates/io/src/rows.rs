@@ -332,6 +332,23 @@ impl TrackRows {
         self.rows
     }
 
+    /// The rows held (those not yet written by [`TrackRows::write_to`]) as columns of
+    /// values, in the header's order: `sensor` and `track` as integers, `status` and
+    /// `reason` as text, every other column as `f64`, each exactly the value whose `{}`
+    /// text the CSV holds (an empty cell as NaN).
+    pub fn columns(&self) -> Vec<(String, ColumnValues)> {
+        let names: Vec<String> = self.columns.iter().map(|c| c.name()).collect();
+        let body = self.text.split_once('\n').map_or("", |(head, body)| {
+            // After `write_to` the text holds rows only.
+            if head == names.join(",") {
+                body
+            } else {
+                self.text.as_str()
+            }
+        });
+        columns_of_text(&names, body)
+    }
+
     /// The file's text.
     pub fn into_text(self) -> String {
         self.text
@@ -357,6 +374,55 @@ impl TrackRows {
 /// A number, or nothing.
 fn cell(out: &mut String, v: Option<f64>) -> std::fmt::Result {
     v.map_or(Ok(()), |v| write!(out, "{v}"))
+}
+
+/// A tracks CSV column's values ([`TrackRows::columns`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ColumnValues {
+    /// Numbers; NaN for an empty cell.
+    F64(Vec<f64>),
+    /// `sensor`, `track`.
+    I64(Vec<i64>),
+    /// `status`, `reason`.
+    Text(Vec<String>),
+}
+
+/// The kind of values of the tracks CSV column `name`.
+fn empty_column(name: &str) -> ColumnValues {
+    match name {
+        "sensor" | "track" => ColumnValues::I64(Vec::new()),
+        "status" | "reason" => ColumnValues::Text(Vec::new()),
+        _ => ColumnValues::F64(Vec::new()),
+    }
+}
+
+/// The columns `names` of tracks CSV rows `body` (no header; written by [`TrackRows`]).
+fn columns_of_text(names: &[String], body: &str) -> Vec<(String, ColumnValues)> {
+    let mut out: Vec<(String, ColumnValues)> =
+        names.iter().map(|n| (n.clone(), empty_column(n))).collect();
+    for line in body.lines().filter(|l| !l.is_empty()) {
+        for ((_, col), cell) in out.iter_mut().zip(line.split(',')) {
+            match col {
+                ColumnValues::F64(v) => v.push(cell.parse().unwrap_or(f64::NAN)),
+                ColumnValues::I64(v) => v.push(cell.parse().unwrap_or(0)),
+                ColumnValues::Text(v) => v.push(cell.to_owned()),
+            }
+        }
+    }
+    out
+}
+
+/// The columns of tracks CSV text (header and rows, as [`TrackRows`] writes it and
+/// `argus track` writes its file), as [`TrackRows::columns`] gives them.
+pub fn text_columns(text: &str) -> Vec<(String, ColumnValues)> {
+    let (head, body) = text.split_once('\n').unwrap_or((text, ""));
+    let names: Vec<String> = head
+        .trim_end_matches('\r')
+        .split(',')
+        .filter(|n| !n.is_empty())
+        .map(str::to_owned)
+        .collect();
+    columns_of_text(&names, body)
 }
 
 #[cfg(test)]
@@ -438,5 +504,44 @@ mod tests {
             s.into_text()
                 .ends_with("\n1,0,1,,,1,2,3,4,2,3,5,6,7,8,1,2\n2,0,1,,,1,2,3,4,2,3,,,,,,\n")
         );
+    }
+
+    #[test]
+    fn columns_hold_the_values_of_the_text() {
+        let g = Gaussian::new(
+            Vector::<4>::new(0.1, 2.0 / 3.0, 3.0, 4.0),
+            Matrix::<4, 4>::from_diagonal(&Vector::<4>::new(2.0, 0.5, 9.0, 0.25)),
+        )
+        .unwrap();
+        let mut multi = TrackRows::new(Column::tracker(2, false, false));
+        multi.push(&Point::new(5.0, &g).of_track(7, 12, "deleted", "misses"));
+        multi.push(&Point::new(6.0, &g).modes(Some(&[0.25, 0.75])));
+        let cols = multi.columns();
+        let names: Vec<&str> = cols.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(
+            names,
+            text_columns(&multi.into_text())
+                .iter()
+                .map(|(n, _)| n.as_str())
+                .collect::<Vec<_>>()
+        );
+        let get = |n: &str| &cols.iter().find(|(c, _)| c == n).unwrap().1;
+        assert_eq!(get("t"), &ColumnValues::F64(vec![5.0, 6.0]));
+        let (ColumnValues::I64(track), ColumnValues::I64(sensor), ColumnValues::Text(status)) =
+            (get("track"), get("sensor"), get("status"))
+        else {
+            panic!("column kinds")
+        };
+        assert_eq!(
+            (track[0], sensor[0], status[0].as_str()),
+            (12, 7, "deleted")
+        );
+        assert_eq!(get("vx"), &ColumnValues::F64(vec![2.0 / 3.0; 2]));
+        assert_eq!(get("sigma_x"), &ColumnValues::F64(vec![2.0_f64.sqrt(); 2]));
+        let ColumnValues::F64(mu) = get("mu_1") else {
+            panic!()
+        };
+        assert!(mu[0].is_nan());
+        assert!((mu[1] - 0.25).abs() == 0.0);
     }
 }
