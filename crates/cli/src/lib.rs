@@ -1,12 +1,13 @@
 //! The `argus` command as a library: the command line ([`run_command_line`], called by
-//! the `argus` binary) and, for the Python bindings, the `argus track` pipeline on files
-//! ([`track_files`]) or as a stream ([`TrackStream`]), with the command's error type
-//! ([`CliError`]). File formats: `docs/FORMATS.md`.
+//! the `argus` binary) and the `argus track` job on files ([`track_files`], the job of
+//! [`argus_io::track`]) with the command's error type ([`CliError`]). File formats:
+//! `docs/FORMATS.md`.
 //!
 //! The `argus track` configuration is read and checked by `argus_config` (its
 //! [`Location`] re-exported here), the plot, ASTERIX and tracks files read and written
-//! by `argus_io`; this crate holds the commands, the estimators and tracker runs of
-//! `argus track`, summaries, figures and the progress bar. Their errors become a
+//! by `argus_io`, whose [`argus_io::track`] runs the job (estimators, the tracker's
+//! session); this crate holds the commands, summaries, figures and the progress bar.
+//! Their errors become a
 //! [`CliError`] of the same text (`From<argus_config::ConfigError>`,
 //! `From<argus_io::IoError>`).
 //!
@@ -38,7 +39,7 @@ mod track;
 
 pub use crate::error::CliError;
 pub use crate::merge_error::MergeError;
-pub use crate::track::{Smoothing, TrackStream, run as track_files};
+pub use crate::track::{Smoothing, run as track_files};
 pub use argus_config::Location;
 
 use std::io::IsTerminal;

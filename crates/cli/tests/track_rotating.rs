@@ -322,7 +322,7 @@ fn a_bad_plot_late_in_the_file_leaves_no_tracks_file_behind() {
 
 #[test]
 fn the_stream_tracks_a_rotating_radar_as_argus_track_does() {
-    // `TrackStream` (the Python `Tracker`'s engine) fed the plot file in two halves gives
+    // `argus_io::track::TrackStream` (the Python `Tracker`'s engine) fed the plot file in two halves gives
     // the rows `argus track` gives for the whole file, in order, except those of the
     // sectors still open when the plots end (`argus track` flushes them; a stream keeps
     // them open for plots still to come).
@@ -331,14 +331,15 @@ fn the_stream_tracks_a_rotating_radar_as_argus_track_does() {
     let run = track(dir.path(), &example(), &file);
     assert_eq!(run.code, Some(0), "{}", run.stderr);
     let config = dir.path().join("rot.toml");
-    let mut stream = argus_cli::TrackStream::new(&config).unwrap();
+    let loaded = argus_config::load(&config).unwrap();
+    let mut stream = argus_io::track::TrackStream::new(loaded, &config).unwrap();
     let mut lines: Vec<&str> = file.lines().collect();
     let header = lines.remove(0);
     let half = lines.len() / 2;
     let mut streamed = Vec::new();
     for part in [&lines[..half], &lines[half..]] {
         let text = format!("{header}\n{}\n", part.join("\n"));
-        let out = stream.process(&text, Path::new("part.csv")).unwrap();
+        let out = stream.process_text(&text, Path::new("part.csv")).unwrap();
         streamed.extend(out.lines().skip(1).map(str::to_owned));
     }
     let whole: Vec<&str> = run.csv.lines().skip(1).collect();

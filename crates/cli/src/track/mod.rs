@@ -22,36 +22,3 @@ pub fn run(
 ) -> Result<(usize, Option<PathBuf>), CliError> {
     Ok(argus_io::track::run_files(config, plots, out, smoothing)?)
 }
-
-/// The multi-target tracker of an `argus track` configuration (one with a `[tracker]`
-/// table), fed plot file text a batch at a time ([`argus_io::track::TrackStream`]).
-#[derive(Debug, Clone)]
-pub struct TrackStream(argus_io::track::TrackStream);
-
-impl TrackStream {
-    /// The tracker of the configuration at `config`.
-    ///
-    /// # Errors
-    /// As `argus track` for the configuration; [`CliError::Input`] when it has no
-    /// `[tracker]` table (a single-target configuration).
-    pub fn new(config: &Path) -> Result<Self, CliError> {
-        let loaded = argus_config::load(config)?;
-        Ok(Self(argus_io::track::TrackStream::new(loaded, config)?))
-    }
-
-    /// Processes `text`, plot file text (header and rows), called `name` in errors: its
-    /// plots grouped into scans by `(time, sensor)` in order, as `argus track` does.
-    /// Returns the tracks CSV text (header and one row per track per scan). On an error
-    /// the tracker is left as it was before the call.
-    ///
-    /// # Errors
-    /// As `argus track` for the plots.
-    pub fn process(&mut self, text: &str, name: &Path) -> Result<String, CliError> {
-        Ok(self.0.process_text(text, name)?)
-    }
-
-    /// The stream of [`argus_io`], fed plots.
-    pub fn inner(&mut self) -> &mut argus_io::track::TrackStream {
-        &mut self.0
-    }
-}
