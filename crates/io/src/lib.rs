@@ -7,7 +7,8 @@
 //!   CAT034 into plots and sector messages, CAT062 system tracks and CAT021 ADS-B reports
 //!   into their CSVs, and the encoders of plots (CAT048, CAT034) and tracks (CAT062);
 //! - [`source`]: an ASTERIX plot file for the sensors of an `argus track` configuration
-//!   (`argus_config`): the plots, the north-marker and sector times, the rotations;
+//!   (`argus_config`), as one time-ordered [`event`] stream: the plots, the north-marker
+//!   and sector times, the rotations;
 //! - [`rows`]: the tracks CSV `argus track` writes;
 //! - [`output`]: output files written atomically.
 //!
@@ -15,6 +16,7 @@
 
 pub mod asterix;
 mod error;
+pub mod event;
 pub mod output;
 pub mod plotfile;
 pub mod rows;

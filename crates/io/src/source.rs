@@ -26,29 +26,31 @@ use argus_sensors::{Plot, SensorId};
 use crate::asterix::plots::{radar_data, rotation_of};
 use crate::asterix::{self, source_of};
 use crate::error::IoError;
+use crate::event::{self, Event, MessageRotation};
 use crate::plotfile::FilePlot;
 use argus_config::Sensor;
 
-/// A radar's rotation read from its CAT034 messages.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MessageRotation {
-    /// The configured sensor's id.
-    pub sensor: u32,
-    /// I034/041 (s).
-    pub period: f64,
-    /// The first north marker's phase in `[0, period)` (s).
-    pub north_time: f64,
-}
-
-/// What an ASTERIX plot file gives the tracker.
+/// What an ASTERIX plot file gives the tracker: its events ([`event::merged`]: the
+/// rotations from CAT034, then the plots and the CAT034 message times of the configured
+/// radars, in time order).
 #[derive(Debug, Clone, Default)]
 pub struct PlotSource {
-    /// The plots, in time order.
-    pub plots: Vec<FilePlot>,
-    /// CAT034 message times of the configured radars, in order.
-    pub markers: Vec<f64>,
-    /// Rotations from CAT034.
-    pub rotations: Vec<MessageRotation>,
+    /// The events, in order.
+    pub events: Vec<Event>,
+}
+
+impl PlotSource {
+    /// Its plots alone, in time order.
+    #[must_use]
+    pub fn plots(&self) -> Vec<FilePlot> {
+        self.events
+            .iter()
+            .filter_map(|e| match e {
+                Event::Plot(p) => Some(*p),
+                Event::Marker(_) | Event::Rotation(_) => None,
+            })
+            .collect()
+    }
 }
 
 /// The data source a sensor answers to: its keys, or `id = 256 · SAC + SIC`.
@@ -119,13 +121,13 @@ pub fn read(path: &Path, config: &Path, sensors: &[Sensor]) -> Result<Option<Plo
             plot,
         });
     }
-    let markers = data
+    let markers: Vec<f64> = data
         .services
         .iter()
         .filter(|m| sensor_of(m.source).is_some())
         .map(|m| m.time)
         .collect();
-    let rotations = sensors
+    let rotations: Vec<MessageRotation> = sensors
         .iter()
         .filter_map(|s| {
             let (period, north_time) = rotation_of(&data.services, answers_to(s)?)?;
@@ -137,8 +139,6 @@ pub fn read(path: &Path, config: &Path, sensors: &[Sensor]) -> Result<Option<Plo
         })
         .collect();
     Ok(Some(PlotSource {
-        plots,
-        markers,
-        rotations,
+        events: event::merged(plots, &markers, &rotations),
     }))
 }

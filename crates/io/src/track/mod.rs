@@ -6,10 +6,11 @@
 //! One pipeline: the configuration is read and checked once by `argus_config`
 //! ([`argus_config::load`]: the sensors, the estimator with every default filled in, the
 //! `[tracker]` table mapped onto the tracker's configuration), the plot file read by
-//! [`crate::plotfile`] or [`crate::source`] (ASTERIX for the configured sensors). The
-//! [`argus_config::Job`] is then one target (`argus_tracker::single`'s engine, its errors
-//! mapped back to the file's lines and keys) or the multi-target tracker (an
-//! `argus_tracker::Session`, its rows written as sectors conclude when going to a file);
+//! [`crate::plotfile`] or [`crate::source`] (ASTERIX for the configured sensors) as one
+//! time-ordered stream of [`crate::event::Event`]s. The [`argus_config::Job`] is then one
+//! target (`argus_tracker::single`'s engine over the plots, its errors mapped back to the
+//! file's lines and keys) or the multi-target tracker (an `argus_tracker::Session`, each
+//! event one of its inputs, its rows written as sectors conclude when going to a file);
 //! both write their rows through [`crate::rows`].
 
 mod multi;
@@ -31,6 +32,7 @@ use argus_config::{Job, Loaded, Sensor};
 use argus_tracker::single::EstimatorSpec;
 
 use crate::IoError;
+use crate::event::Event;
 use crate::output::write_atomic;
 use crate::plotfile::{self, FilePlot};
 use crate::rows::TrackRows;
@@ -70,7 +72,7 @@ pub fn run_files(
     match &loaded.job {
         Job::Single { sensors, estimator } => {
             let plots = match &asterix {
-                Some(a) => a.plots.clone(),
+                Some(a) => a.plots(),
                 None => plotfile::read(plots)?,
             };
             let rows = single_rows(&loaded, names, sensors, estimator, plots, smoothing)?;
@@ -79,20 +81,13 @@ pub fn run_files(
             Ok((n, None))
         }
         Job::Multi(m) => {
-            let mut m = m.clone();
-            let mut files = multi_files::Files::new(names, loaded.reference.as_ref(), smoothing);
+            let files = multi_files::Files::new(names, loaded.reference.as_ref(), smoothing);
             let grid = &loaded.grid_rotations;
-            let (n, summary) = match &asterix {
-                Some(a) => {
-                    multi::set_rotations(&mut m, &a.rotations, grid);
-                    files.markers = &a.markers;
-                    let plots = a.plots.iter().map(|p| Ok(p.to_reference(grid)));
-                    multi::run_to_files(&m, &files, plots)?
-                }
+            let (n, summary) = match asterix {
+                Some(a) => multi::run_to_files(m, &files, grid, a.events.into_iter().map(Ok))?,
                 None => {
-                    let plots =
-                        plotfile::PlotReader::open(plots)?.map(|p| p.map(|p| p.to_reference(grid)));
-                    multi::run_to_files(&m, &files, plots)?
+                    let events = plotfile::PlotReader::open(plots)?.map(|p| p.map(Event::Plot));
+                    multi::run_to_files(m, &files, grid, events)?
                 }
             };
             Ok((n, Some(summary)))
@@ -121,8 +116,8 @@ pub fn run_plots(
         Job::Multi(m) => {
             let files = multi_files::Files::new(names, loaded.reference.as_ref(), smoothing);
             let grid = &loaded.grid_rotations;
-            let plots = plots.into_iter().map(|p| Ok(p.to_reference(grid)));
-            let (rows, (), summary) = multi::run(m, &files, plots, || Ok(()))?;
+            let events = plots.into_iter().map(|p| Ok(Event::Plot(p)));
+            let (rows, (), summary) = multi::run(m, &files, grid, events, || Ok(()))?;
             let value = serde_json::to_value(&summary).map_err(|e| {
                 let path = multi::summary_path(names.out);
                 IoError::io(&path, std::io::Error::other(e.to_string()))

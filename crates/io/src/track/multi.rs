@@ -1,14 +1,17 @@
-//! The multi-target job: the tracker ([`argus_tracker`]) over the plot file, the plots
-//! grouped into scans by `(time, sensor)` in file order, one row per track per scan with
-//! its id and status, and a JSON summary (see `docs/FORMATS.md`).
+//! The multi-target job: the tracker's session ([`argus_tracker::Session`]) over the plot
+//! file's events (one input each: the plots, grouped into scans by `(time, sensor)` in
+//! file order, the markers and rotations of an ASTERIX file), one row per track per scan
+//! with its id and status, and a JSON summary (see `docs/FORMATS.md`).
 
 use std::path::{Path, PathBuf};
 
+use crate::event::{Event, MessageRotation};
 use crate::output::{AtomicFile, write_atomic};
-use crate::plotfile::FilePlot;
 use crate::rows::{Column, TrackRows};
 use argus_config::MultiTarget;
-use argus_tracker::{AssociationConfig, EstimatorConfig, Input, Output, Session, TrackerConfig};
+use argus_tracker::{
+    AssociationConfig, EstimatorConfig, Input, Output, Rotation, SensorId, Session, TrackerConfig,
+};
 
 use super::multi_files::{Files, plot_error, tracker_plot};
 use super::multi_smooth::Recorded;
@@ -16,27 +19,26 @@ use super::smooth::Smoothing;
 use super::tally::{Counts, Tally};
 use crate::IoError;
 
-/// Gives the sensors the rotations an ASTERIX file's CAT034 messages state (the
-/// configured direction kept; a geodetic site's `north_time` moved by its grid rotation
-/// `γ`, as a configured one is, [`argus_config::turned`]).
-pub(super) fn set_rotations(
-    m: &mut MultiTarget,
-    rotations: &[crate::source::MessageRotation],
-    grid_rotations: &[(u32, f64)],
-) {
-    for r in rotations {
-        if let Some(s) = m.config.sensors.iter_mut().find(|s| s.id.0 == r.sensor) {
-            let direction = s.rotation.map(|x| x.direction).unwrap_or_default();
-            let gamma = grid_rotations
-                .iter()
-                .find(|(id, _)| *id == r.sensor)
-                .map_or(0.0, |(_, g)| *g);
-            let stated = argus_tracker::Rotation::clockwise(r.period)
-                .with_direction(direction)
-                .with_north_time(r.north_time);
-            s.rotation = Some(argus_config::turned(stated, gamma));
-        }
-    }
+/// The tracker's rotation of sensor `r.sensor` as an ASTERIX file's CAT034 messages state
+/// it: the configured direction kept (clockwise by default), a geodetic site's
+/// `north_time` moved by its grid rotation `γ` as a configured one is
+/// ([`argus_config::turned`]).
+fn stated(c: &TrackerConfig, r: &MessageRotation, grid_rotations: &[(u32, f64)]) -> Rotation {
+    let direction = c
+        .sensors
+        .iter()
+        .find(|s| s.id.0 == r.sensor)
+        .and_then(|s| s.rotation)
+        .map(|x| x.direction)
+        .unwrap_or_default();
+    let gamma = grid_rotations
+        .iter()
+        .find(|(id, _)| *id == r.sensor)
+        .map_or(0.0, |(_, g)| *g);
+    let stated = Rotation::clockwise(r.period)
+        .with_direction(direction)
+        .with_north_time(r.north_time);
+    argus_config::turned(stated, gamma)
 }
 
 /// The tracks CSV's columns for a configuration: the IMMs add the mode probabilities,
@@ -138,7 +140,38 @@ impl Sink for () {
 /// sink, and the summary.
 pub(super) type Ran<'a, S> = (TrackRows, S, Summary<'a>);
 
-/// Runs the tracker over `plots` (read and checked one at a time by `plotfile`). With a
+/// The session's input of `event` (a plot moved into the reference frame by the sites'
+/// grid rotations); `None` for a rotation of a sensor the tracker does not have.
+///
+/// # Errors
+/// [`IoError::Input`] for a 3-D plot.
+fn input_of(
+    c: &TrackerConfig,
+    files: &Files<'_>,
+    grid: &[(u32, f64)],
+    event: Event,
+) -> Result<Option<Input>, IoError> {
+    Ok(match event {
+        Event::Plot(p) => {
+            let p = p.to_reference(grid);
+            let plot = tracker_plot(files, &p)?;
+            Some(Input::Plot { plot, tag: p.line })
+        }
+        Event::Marker(t) => Some(Input::Marker(t)),
+        Event::Rotation(r) => {
+            c.sensors
+                .iter()
+                .any(|s| s.id.0 == r.sensor)
+                .then(|| Input::Rotation {
+                    sensor: SensorId(r.sensor),
+                    rotation: stated(c, &r, grid),
+                })
+        }
+    })
+}
+
+/// Runs the tracker's session over `events` (plots read and checked one at a time by
+/// `plotfile`, or an ASTERIX file's events; `grid` the sites' grid rotations). With a
 /// file (`open` gives one, once the tracker is built), the rows are written to it as the
 /// scans and sectors conclude: memory does not grow with the file (but with `--smooth`,
 /// which holds every confirmed track's rows until the end); the caller writes the rest
@@ -147,11 +180,12 @@ pub(super) type Ran<'a, S> = (TrackRows, S, Summary<'a>);
 ///
 /// # Errors
 /// [`IoError::Input`] naming the plot file's line for a bad plot or one the tracker
-/// rejects; [`IoError::Io`].
+/// rejects; [`IoError::Tracker`] for a rotation it refuses; [`IoError::Io`].
 pub(super) fn run<'m, S: Sink>(
     m: &'m MultiTarget,
     files: &Files<'_>,
-    plots: impl Iterator<Item = Result<FilePlot, IoError>>,
+    grid: &[(u32, f64)],
+    events: impl Iterator<Item = Result<Event, IoError>>,
     open: impl FnOnce() -> Result<S, IoError>,
 ) -> Result<Ran<'m, S>, IoError> {
     let c = &m.config;
@@ -169,32 +203,16 @@ pub(super) fn run<'m, S: Sink>(
     let mut tally = Tally::new(&mut out, recorded.as_mut());
     let mut outputs = Vec::new();
     let mut n_plots = 0;
-    let mut markers = files.markers.iter().copied().peekable();
-    for p in plots {
-        let p = p?;
-        while let Some(m) = markers.next_if(|m| *m <= p.time()) {
-            push(
-                &mut session,
-                &mut tally,
-                files,
-                Input::Marker(m),
-                &mut outputs,
-            )?;
-        }
-        let plot = tracker_plot(files, &p)?;
-        let input = Input::Plot { plot, tag: p.line };
+    for e in events {
+        let Some(input) = input_of(c, files, grid, e?)? else {
+            continue;
+        };
+        let plot = matches!(input, Input::Plot { .. });
         push(&mut session, &mut tally, files, input, &mut outputs)?;
-        n_plots += 1;
-        file.flush(tally.out)?;
-    }
-    for m in markers {
-        push(
-            &mut session,
-            &mut tally,
-            files,
-            Input::Marker(m),
-            &mut outputs,
-        )?;
+        if plot {
+            n_plots += 1;
+            file.flush(tally.out)?;
+        }
     }
     push(&mut session, &mut tally, files, Input::End, &mut outputs)?;
     let (scans, assigned, counts) = (tally.scans, tally.assigned, tally.counts);
@@ -237,9 +255,11 @@ pub(super) fn run<'m, S: Sink>(
 pub(super) fn run_to_files(
     m: &MultiTarget,
     files: &Files<'_>,
-    plots: impl Iterator<Item = Result<FilePlot, IoError>>,
+    grid: &[(u32, f64)],
+    events: impl Iterator<Item = Result<Event, IoError>>,
 ) -> Result<(usize, PathBuf), IoError> {
-    let (mut out, mut file, summary) = run(m, files, plots, || AtomicFile::create(files.out))?;
+    let open = || AtomicFile::create(files.out);
+    let (mut out, mut file, summary) = run(m, files, grid, events, open)?;
     let rows = out.rows();
     out.write_to(&mut file)?;
     file.commit()?;

@@ -23,13 +23,10 @@ pub(super) struct Files<'a> {
     pub(super) reference: Option<&'a Reference>,
     /// `--smooth` / `--smooth-lag` ([`super::multi_smooth`]).
     pub(super) smoothing: Option<Smoothing>,
-    /// Times the tracker advances to with no plot (an ASTERIX file's CAT034 messages,
-    /// [`crate::source`]), in order.
-    pub(super) markers: &'a [f64],
 }
 
 impl<'a> Files<'a> {
-    /// The files of `names`, no markers.
+    /// The files of `names`.
     pub(super) fn new(
         names: super::Names<'a>,
         reference: Option<&'a Reference>,
@@ -41,7 +38,6 @@ impl<'a> Files<'a> {
             out: names.out,
             reference,
             smoothing,
-            markers: &[],
         }
     }
 }

@@ -83,7 +83,6 @@ impl TrackStream {
             out: name,
             reference: self.reference.as_ref(),
             smoothing: None,
-            markers: &[],
         };
         let mut out =
             TrackRows::with_reference(multi::columns(&self.job.config), self.reference.as_ref());
