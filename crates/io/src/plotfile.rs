@@ -258,16 +258,17 @@ fn layout_of(cols: &[String], path: &Path) -> Result<Layout, IoError> {
         }
     }
     let idx = |name: &str| cols.iter().position(|c| c == name);
-    for name in ["t", "sensor"] {
-        if idx(name).is_none() {
-            return Err(IoError::input(
-                path,
-                Some(1),
-                Some(name),
-                "required column is missing",
-            ));
-        }
-    }
+    // The first of `names` the header lacks, as the error.
+    let require = |names: &[&str]| match names.iter().find(|n| idx(n).is_none()) {
+        Some(name) => Err(IoError::input(
+            path,
+            Some(1),
+            Some(name),
+            "required column is missing",
+        )),
+        None => Ok(()),
+    };
+    require(&[TIME, SENSOR])?;
     let polar = ["range", "azimuth", "elevation"]
         .iter()
         .any(|c| idx(c).is_some());
@@ -301,16 +302,7 @@ fn layout_of(cols: &[String], path: &Path) -> Result<Layout, IoError> {
             ));
         }
     };
-    for name in layout.all_columns() {
-        if idx(name).is_none() {
-            return Err(IoError::input(
-                path,
-                Some(1),
-                Some(name),
-                "required column is missing",
-            ));
-        }
-    }
+    require(&layout.all_columns())?;
     Ok(layout)
 }
 
