@@ -38,22 +38,14 @@ struct Config {
 /// The configuration given as `kind` `"text"` (TOML text), `"path"` (a file, read here)
 /// or `"json"` (a dict as JSON text, turned into TOML).
 fn config(kind: &str, value: &str) -> PyResult<Config> {
-    let (text, name) = match kind {
-        "path" => {
-            let path = PathBuf::from(value);
-            let text = std::fs::read_to_string(&path).map_err(|e| {
-                config_error(&ConfigError::Io {
-                    path: path.clone(),
-                    source: e,
-                })
-            })?;
-            (text, path)
-        }
-        "text" => (value.to_owned(), PathBuf::from("config.toml")),
-        "json" => (toml_from_json(value)?, PathBuf::from("config.toml")),
+    let name = PathBuf::from(if kind == "path" { value } else { "config.toml" });
+    let loaded = match kind {
+        "path" => argus_config::load(&name),
+        "text" => argus_config::load_text(value, &name),
+        "json" => argus_config::load_text(&toml_from_json(value)?, &name),
         other => return Err(input(format!("argument 'config': unknown kind {other:?}"))),
-    };
-    let loaded = argus_config::load_text(&text, &name).map_err(|e| config_error(&e))?;
+    }
+    .map_err(|e| config_error(&e))?;
     Ok(Config { name, loaded })
 }
 
