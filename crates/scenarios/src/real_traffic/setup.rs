@@ -1,9 +1,9 @@
 //! `real-traffic`'s parameters, shared setup and one run: plots, tracking, scoring.
 
 use argus_geo::Geodetic;
-use argus_imm::ImmEstimate;
 use argus_score::{ScoreConfig, Scorer, TrackHistory, TrackRow, TruthPath, TruthSample};
 use argus_sim::{ChaCha8Rng, Rotation, run_rng};
+use argus_tracker::smooth::TrackSmoother;
 use argus_tracker::{
     AssociationConfig, EstimatorConfig, EstimatorState, Plot, RotationDirection, SensorConfig,
     TrackStatus, Tracker, TrackerConfig,
@@ -11,10 +11,7 @@ use argus_tracker::{
 use serde::{Deserialize, Serialize};
 
 use super::radar::{self, Radar};
-use super::smooth::{
-    SmoothedTruth, nees_against, smoothed_aircraft_track, smoothed_imm_track, smoothed_track,
-    smoothed_truth,
-};
+use super::smooth::{SmoothedTruth, nees_against, smoothed_history, smoothed_truth};
 use super::truth::{self, Path};
 use crate::error::{ParamProblem, ScenarioError};
 use crate::params::Params;
@@ -231,13 +228,11 @@ impl Setup {
             )?;
             let mut histories = Vec::with_capacity(records.len());
             let mut estimates = Vec::with_capacity(records.len());
-            let mut imm_states = Vec::with_capacity(records.len());
-            let mut aircraft_states = Vec::with_capacity(records.len());
+            let mut states = Vec::with_capacity(records.len());
             for r in records {
                 histories.push(r.history);
                 estimates.push(r.estimates);
-                imm_states.push(r.imm);
-                aircraft_states.push(r.aircraft);
+                states.push(r.states);
             }
             if let Ok(path) = std::env::var("ARGUS_DEBUG_TRACKS") {
                 let mut t = String::from("t,track,status,x,vx,y,vy\n");
@@ -273,54 +268,17 @@ impl Setup {
                 }
             }
             let score = self.scorer.score(&histories, &self.truth)?;
-            let smoothed = match named.config.estimator {
-                EstimatorConfig::Kf | EstimatorConfig::Ekf => {
-                    let kf = argus_filters::Kf::new(argus_motion_models::Cv2D::discrete(
-                        named.config.sigma_a,
-                    )?);
-                    Some(
-                        histories
-                            .iter()
-                            .zip(&estimates)
-                            .map(|(h, e)| smoothed_track(&kf, h, e))
-                            .collect::<Result<Vec<_>, _>>()?,
-                    )
-                }
-                EstimatorConfig::ImmCv2 {
-                    sigma_a_low,
-                    sigma_a_high,
-                    p_stay,
-                } => {
-                    let imm = argus_tracker::two_mode_imm(sigma_a_low, sigma_a_high, p_stay)?;
-                    Some(
-                        histories
-                            .iter()
-                            .zip(&imm_states)
-                            .map(|(h, e)| smoothed_imm_track(&imm, h, e))
-                            .collect::<Result<Vec<_>, _>>()?,
-                    )
-                }
-                EstimatorConfig::Aircraft { tuning } => {
-                    let imm = tuning.build()?;
-                    Some(
-                        histories
-                            .iter()
-                            .zip(&aircraft_states)
-                            .map(|(h, e)| smoothed_aircraft_track(&imm, h, e))
-                            .collect::<Result<Vec<_>, _>>()?,
-                    )
-                }
-                _ => None,
-            };
-            let smoothed_position_rmse = match smoothed {
-                Some(tracks) => {
-                    self.scorer
-                        .score(&tracks, &self.truth)?
-                        .summary
-                        .position_rmse
-                }
-                None => None,
-            };
+            let smoother = TrackSmoother::new(&named.config)?;
+            let smoothed = histories
+                .iter()
+                .zip(estimates.iter().zip(&states))
+                .map(|(h, (e, s))| smoothed_history(&smoother, h, e, s))
+                .collect::<Result<Vec<_>, _>>()?;
+            let smoothed_position_rmse = self
+                .scorer
+                .score(&smoothed, &self.truth)?
+                .summary
+                .position_rmse;
             let (nees_sum, nees_count) =
                 nees_against(&histories, &estimates, &self.truth_smoothed, self.cutoff);
             let extended = self.scorer.score(&histories, &self.truth_extended)?;
@@ -477,25 +435,14 @@ fn trackers(p: &Params, radar: &Radar) -> Result<Vec<Named>, ScenarioError> {
 /// row's estimate (mean and covariance) for smoothing and the NEES.
 /// A row's combined estimate and, for the two-mode IMM, the track's IMM state; for the
 /// aircraft IMM its state (boxed: 584 bytes).
-type RowEstimate = (
-    argus_core_math::Gaussian<4>,
-    (Option<ImmEstimate<4, 2>>, Option<Box<AircraftState>>),
-);
+type RowEstimate = (argus_core_math::Gaussian<4>, EstimatorState);
 
-/// The aircraft IMM's state of a track.
-pub(crate) type AircraftState = argus_imm::AircraftEstimate<2, 3>;
-
-/// One track's rows as the tracker gave them: its history, its combined estimate per row
-/// and, for the two-mode IMM ([`EstimatorConfig::ImmCv2`]), its mode-conditioned state
-/// per row ([`argus_tracker::EstimatorState::Imm`] of [`argus_tracker::Track::state`]; `None`
-/// for the other estimators).
+/// One track's rows as the tracker gave them: its history, and per row its combined
+/// estimate and its estimator state ([`argus_tracker::Track::state`]), for smoothing.
 pub(crate) struct TrackRecord {
     pub(crate) history: TrackHistory,
     pub(crate) estimates: Vec<argus_core_math::Gaussian<4>>,
-    pub(crate) imm: Vec<Option<ImmEstimate<4, 2>>>,
-    /// For the aircraft IMM ([`EstimatorConfig::Aircraft`]), its state per row
-    /// ([`argus_tracker::EstimatorState::Aircraft`]; `None` for the other estimators).
-    pub(crate) aircraft: Vec<Option<Box<AircraftState>>>,
+    pub(crate) states: Vec<EstimatorState>,
 }
 
 pub(crate) fn track_with_estimates(
@@ -525,19 +472,7 @@ pub(crate) fn track_with_estimates(
                     y: x[2],
                     vy: x[3],
                 },
-                (
-                    *tr.estimate(),
-                    (
-                        match tr.state() {
-                            EstimatorState::Imm(imm) => Some(*imm),
-                            _ => None,
-                        },
-                        match tr.state() {
-                            EstimatorState::Aircraft(a) => Some(a.clone()),
-                            _ => None,
-                        },
-                    ),
-                ),
+                (*tr.estimate(), tr.state().clone()),
             ));
         }
         tracker.take_deleted();
@@ -561,13 +496,11 @@ pub(crate) fn track_with_estimates(
         .map(|(id, r)| {
             let (rows, estimates): (Vec<TrackRow>, Vec<RowEstimate>) = r.into_iter().unzip();
             let (estimates, states): (Vec<_>, Vec<_>) = estimates.into_iter().unzip();
-            let (imm, aircraft) = states.into_iter().unzip();
             let h = TrackHistory::new(id.to_string(), rows).map_err(ScenarioError::from)?;
             Ok(TrackRecord {
                 history: h,
                 estimates,
-                imm,
-                aircraft,
+                states,
             })
         })
         .collect()

@@ -2,26 +2,13 @@
 //! smoothed over their own lives, scored like the filtered ones (`smooth_rms_ratio`), and
 //! the NEES of every configuration's `[x, vx, y, vy]` against an RTS-smoothed ADS-B truth.
 //!
-//! **Tracks.** The tracker keeps per track only its filtered estimate. For its CV Kalman
-//! filter (`gnn_kf`, `jpda_kf`) that is enough and exact: it predicts a track from its
-//! last posterior by `Cv2D::discrete(sigma_a)`, so the same prediction from the row before
-//! is the tracker's own to round-off, and the RTS pass over the rows is the fixed-interval
-//! smoother of the recorded forward pass (with JPDA: of the PDA posteriors' moments), as
-//! `argus track --smooth` does. The two-mode IMM tracks (`gnn_imm`, `jpda_imm`) are
-//! smoothed by `argus_imm`'s IMM smoother over their recorded mode-conditioned states
-//! ([`argus_tracker::EstimatorState::Imm`] per row): the forward record (every mode's
-//! estimate predicted through every model with its cross covariance, `ln μ̄`) is
-//! recomputed from the row before's mode estimates over the rows' time difference by an
-//! IMM built as the tracker builds its own, so with GNN it is the IMM's own forward pass
-//! and with JPDA the smoother of the recorded per-mode PDA moments — as `argus track
-//! --smooth` does (`crates/cli/src/track/multi_smooth.rs`). This holds because a track
-//! is recorded after every sector and a rotating radar updates it at most once per
-//! revolution (a sector is one revolution's eighth), so no forward step falls between two
-//! rows. The aircraft-IMM tracks (`*_aircraft`) are smoothed the same way by `argus_imm`'s
-//! aircraft-IMM smoother over their recorded states
-//! ([`argus_tracker::EstimatorState::Aircraft`] per row; the record recomputed from the
-//! row before's modes by the IMM of the tuning, `AircraftTuning::build`, as the tracker
-//! builds it), as `argus track --smooth` does.
+//! **Tracks.** Every configuration's tracks are smoothed over their own lives by the
+//! tracker's one smoother of its tracks ([`argus_tracker::smooth::TrackSmoother`], as
+//! `argus track --smooth` does; its docs say what is smoothed for each estimator and why
+//! it is exact) from the rows recorded after every sector. This holds because a rotating
+//! radar updates a track at most once per revolution (a sector is one revolution's
+//! eighth), so no forward step falls between two rows. Rows at the time of the row
+//! before (a deleted track's last row) take that row's smoothed state.
 //!
 //! **Smoothed truth.** The ADS-B positions jitter (docs/real-traffic.md: a 1-s sample's
 //! distance from the midpoint of its neighbours has median 11.5 m, 90th percentile 52 m;
@@ -34,15 +21,13 @@
 
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::{GaussianFilter, Kf, RtsStep, SmoothingFilter, rts_smooth};
-use argus_imm::{AircraftEkf, AircraftEstimate, AircraftTrack, ImmEstimate, ImmTrack};
 use argus_motion_models::Cv2D;
 use argus_score::{TrackHistory, TrackRow, TruthPath};
 use argus_sensors::CartesianPosition;
-use argus_tracker::TwoModeImm;
+use argus_tracker::EstimatorState;
+use argus_tracker::smooth::{FilteredRow, Smoothing, TrackSmoother};
 
 use crate::error::ScenarioError;
-
-mod modes;
 
 /// The smoothed truth's assumed ADS-B position noise per axis (m), module docs.
 pub(crate) const TRUTH_SIGMA: f64 = 20.0;
@@ -138,55 +123,52 @@ pub(crate) fn smoothed_truth(truth: &[TruthPath]) -> Result<Vec<SmoothedTruth>, 
     Ok(out)
 }
 
-/// A track's rows smoothed by the RTS smoother of the tracker's CV Kalman filter `kf`
-/// (module docs): a history with the same rows and flags and the smoothed states. Rows at
-/// the time of the row before (a deleted track's last row) take that row's smoothed state.
+/// A track's rows smoothed by `smoother` over their recorded estimates and estimator
+/// states (module docs): a history with the same rows and flags and the smoothed states.
 ///
 /// # Errors
-/// [`ScenarioError::Degenerate`] naming the track if a step fails.
-pub(crate) fn smoothed_track(
-    kf: &Kf<Cv2D>,
+/// [`ScenarioError::Degenerate`] naming the track if the rows, estimates and states
+/// differ in number, or a step fails.
+pub(crate) fn smoothed_history(
+    smoother: &TrackSmoother,
     history: &TrackHistory,
     estimates: &[Gaussian<4>],
+    states: &[EstimatorState],
 ) -> Result<TrackHistory, ScenarioError> {
     let fail = |e: &dyn std::fmt::Display| smoothing_error(&format!("track {}", history.name()), e);
     let rows = history.rows();
-    let mut steps: Vec<RtsStep<4>> = Vec::with_capacity(rows.len());
-    // Per row, the step it belongs to.
-    let mut step_of = Vec::with_capacity(rows.len());
-    for (r, g) in rows.iter().zip(estimates) {
-        match steps.last() {
-            None => steps.push(RtsStep::first(r.t, *g)),
-            Some(last) if r.t > last.time() => {
-                let tr = kf
-                    .predict_with_cross(last.filtered(), r.t - last.time())
-                    .map_err(|e| fail(&e))?;
-                steps.push(RtsStep::new(r.t, tr, *g));
-            }
-            Some(_) => {}
-        }
-        step_of.push(steps.len() - 1);
+    if estimates.len() != rows.len() || states.len() != rows.len() {
+        return Err(fail(&format!(
+            "{} rows against {} estimates and {} states",
+            rows.len(),
+            estimates.len(),
+            states.len()
+        )));
     }
-    let smoothed = rts_smooth(&steps).map_err(|e| fail(&e))?;
-    with_smoothed_states(history, &step_of, |k| smoothed[k].mean())
-}
-
-/// `history` with each row's state replaced by its step's smoothed mean: row `i` takes
-/// `mean(step_of[i])`, its flags and time kept.
-///
-/// # Errors
-/// [`ScenarioError`] if the history cannot be rebuilt (it was valid, so it can).
-fn with_smoothed_states<'a>(
-    history: &TrackHistory,
-    step_of: &[usize],
-    mean: impl Fn(usize) -> &'a Vector<4>,
-) -> Result<TrackHistory, ScenarioError> {
-    let rows = history
-        .rows()
+    let filtered: Vec<FilteredRow<'_>> = rows
         .iter()
-        .zip(step_of)
-        .map(|(r, &k)| {
-            let m = mean(k);
+        .zip(estimates.iter().zip(states))
+        .map(|(r, (estimate, state))| FilteredRow {
+            time: r.t,
+            estimate,
+            state,
+        })
+        .collect();
+    let smoothed = smoother
+        .smooth(&filtered, Smoothing::Interval)
+        .map_err(|f| {
+            fail(&format!(
+                "step {} (t = {} s): {}",
+                f.step(),
+                f.time(),
+                f.message()
+            ))
+        })?;
+    let rows = rows
+        .iter()
+        .zip(&smoothed)
+        .map(|(r, s)| {
+            let m = s.estimate.mean();
             TrackRow {
                 x: m[0],
                 vx: m[1],
@@ -197,43 +179,6 @@ fn with_smoothed_states<'a>(
         })
         .collect();
     TrackHistory::new(history.name(), rows).map_err(ScenarioError::from)
-}
-
-/// A two-mode IMM track's rows smoothed by `argus_imm`'s IMM smoother over its recorded
-/// mode-conditioned states `states` (module docs): a history with the same rows and flags
-/// and the smoothed combined states. Rows at the time of the row before (a deleted
-/// track's last row) take that row's smoothed state, as in [`smoothed_track`].
-///
-/// # Errors
-/// [`ScenarioError::Degenerate`] naming the track if a row has no IMM state or a step
-/// fails.
-pub(crate) fn smoothed_imm_track(
-    imm: &TwoModeImm,
-    history: &TrackHistory,
-    states: &[Option<ImmEstimate<4, 2>>],
-) -> Result<TrackHistory, ScenarioError> {
-    modes::smoothed_mode_track::<ImmTrack<4, 2>, _, _>(imm, history, states, "IMM", |s| *s)
-}
-
-/// An aircraft-IMM track's rows smoothed by `argus_imm`'s aircraft-IMM smoother over its
-/// recorded states `states` (module docs), as [`smoothed_imm_track`] does for the
-/// two-mode IMM.
-///
-/// # Errors
-/// [`ScenarioError::Degenerate`] naming the track if a row has no aircraft-IMM state or a
-/// step fails.
-pub(crate) fn smoothed_aircraft_track(
-    imm: &AircraftEkf<2, 3>,
-    history: &TrackHistory,
-    states: &[Option<Box<AircraftEstimate<2, 3>>>],
-) -> Result<TrackHistory, ScenarioError> {
-    modes::smoothed_mode_track::<AircraftTrack<2, 3>, _, _>(
-        imm,
-        history,
-        states,
-        "aircraft-IMM",
-        |s| s.as_deref().copied(),
-    )
 }
 
 /// `Σ NEES` and the number of confirmed rows compared: each confirmed row's
@@ -275,7 +220,6 @@ mod tests {
     #![allow(clippy::unwrap_used)]
 
     use super::*;
-    use argus_filters::RtsTrack;
     use argus_score::TruthSample;
 
     /// A deterministic zero-mean jitter in [−a, a] (no RNG needed for a unit test).
@@ -283,72 +227,6 @@ mod tests {
         a * ((k as f64 * 12.9898).sin() * 43_758.545_3)
             .rem_euclid(1.0)
             .mul_add(2.0, -1.0)
-    }
-
-    #[test]
-    fn a_track_smooths_as_the_rts_smoother_of_its_filter() {
-        // Rows of a KF track (updates, one coasted row, a repeated last row) smoothed from
-        // the rows alone equal RtsTrack's smoother of the same forward pass to round-off
-        // (1e-9 relative); the repeated row takes the last step's value.
-        let kf = Kf::new(Cv2D::discrete(2.0).unwrap());
-        let meas = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 900.0).unwrap();
-        let g0 = Gaussian::new(
-            Vector::<4>::new(0.0, 100.0, 0.0, 0.0),
-            Matrix::<4, 4>::identity() * 1e4,
-        )
-        .unwrap();
-        let mut rt = RtsTrack::new(0.0, g0).unwrap();
-        let (mut rows, mut est) = (vec![], vec![g0]);
-        rows.push(TrackRow {
-            t: 0.0,
-            confirmed: false,
-            x: 0.0,
-            vx: 100.0,
-            y: 0.0,
-            vy: 0.0,
-        });
-        for k in 1..30 {
-            let t = 5.0 * k as f64 + jitter(k, 0.5);
-            if k == 12 {
-                rt.predict(&kf, t).unwrap();
-                rt.coast().unwrap();
-            } else {
-                let z = Vector::<2>::new(100.0 * t + jitter(k, 40.0), jitter(k + 99, 40.0));
-                rt.step(&kf, t, &meas, &z).unwrap();
-            }
-            let g = *rt.latest();
-            rows.push(TrackRow {
-                t,
-                confirmed: true,
-                x: g.mean()[0],
-                vx: g.mean()[1],
-                y: g.mean()[2],
-                vy: g.mean()[3],
-            });
-            est.push(g);
-        }
-        let last = *rows.last().unwrap();
-        rows.push(TrackRow {
-            confirmed: false,
-            ..last
-        });
-        est.push(*est.last().unwrap());
-        let h = TrackHistory::new("1", rows).unwrap();
-        let s = smoothed_track(&kf, &h, &est).unwrap();
-        let want = rt.smooth().unwrap();
-        for (k, (r, w)) in s
-            .rows()
-            .iter()
-            .zip(want.iter().chain([want.last().unwrap()]))
-            .enumerate()
-        {
-            let m = w.mean();
-            let d = [r.x - m[0], r.vx - m[1], r.y - m[2], r.vy - m[3]];
-            assert!(
-                d.iter().all(|v| v.abs() < 1e-9 * m.amax()),
-                "row {k}: {d:?}"
-            );
-        }
     }
 
     #[test]
@@ -386,84 +264,5 @@ mod tests {
             s.iter().all(|p| p.at(115.0).is_none()),
             "the gap is not bridged"
         );
-    }
-    #[test]
-    fn an_imm_track_smooths_as_the_imm_smoother_of_its_forward_pass() {
-        // Rows of a two-mode IMM track (updates, one coasted row, a repeated last row)
-        // smoothed from the recorded mode states alone equal ImmTrack's smoother of the
-        // same forward pass (ImmTrack::step) to round-off (1e-9 relative).
-        let imm = argus_tracker::two_mode_imm(0.5, 10.0, 0.95).unwrap();
-        let meas = CartesianPosition::<4, 2>::cv(Matrix::<2, 2>::identity() * 900.0).unwrap();
-        let g0 = Gaussian::new(
-            Vector::<4>::new(0.0, 100.0, 0.0, 0.0),
-            Matrix::<4, 4>::identity() * 1e4,
-        )
-        .unwrap();
-        let e0 = ImmEstimate::from_common(g0, [0.5, 0.5]).unwrap();
-        let mut it = ImmTrack::new(*imm.markov(), 0.0, e0).unwrap();
-        let row = |t: f64, g: &Gaussian<4>| TrackRow {
-            t,
-            confirmed: true,
-            x: g.mean()[0],
-            vx: g.mean()[1],
-            y: g.mean()[2],
-            vy: g.mean()[3],
-        };
-        let (mut rows, mut states) = (vec![row(0.0, &g0)], vec![Some(e0)]);
-        let mut t = 0.0;
-        for k in 1..30 {
-            let tn = 5.0 * k as f64 + jitter(k, 0.5);
-            if k == 12 {
-                let p = imm.predict(it.latest(), tn - t).unwrap();
-                it.push(&imm, tn, p.into_estimate()).unwrap();
-            } else {
-                // A turn from step 15 on.
-                let y = if k > 15 {
-                    30.0 * (k - 15).pow(2) as f64
-                } else {
-                    0.0
-                };
-                let z = Vector::<2>::new(100.0 * tn + jitter(k, 40.0), y + jitter(k + 99, 40.0));
-                it.step(&imm, tn, &meas, &z).unwrap();
-            }
-            t = tn;
-            rows.push(row(t, &it.latest().combined().unwrap()));
-            states.push(Some(*it.latest()));
-        }
-        let last = *rows.last().unwrap();
-        rows.push(TrackRow {
-            confirmed: false,
-            ..last
-        });
-        states.push(*states.last().unwrap());
-        let h = TrackHistory::new("1", rows).unwrap();
-        let s = smoothed_imm_track(&imm, &h, &states).unwrap();
-        let want = it.smooth().unwrap();
-        let mut moved = 0.0_f64;
-        for (k, (r, w)) in s
-            .rows()
-            .iter()
-            .zip(want.iter().chain([want.last().unwrap()]))
-            .enumerate()
-        {
-            let m = w.combined.mean();
-            let d = [r.x - m[0], r.vx - m[1], r.y - m[2], r.vy - m[3]];
-            assert!(
-                d.iter().all(|v| v.abs() < 1e-9 * m.amax()),
-                "row {k}: {d:?}"
-            );
-            moved = moved.max((r.y - h.rows()[k].y).abs());
-        }
-        // The smoother is not the filter (the test can fail).
-        assert!(moved > 1.0, "smoothing moved y by at most {moved} m");
-        // A row without an IMM state is a typed error, not a half-smoothed track.
-        let mut bad = states.clone();
-        bad[7] = None;
-        let e = smoothed_imm_track(&imm, &h, &bad).unwrap_err().to_string();
-        assert!(e.contains("row 7 has no IMM state"), "{e}");
-        let e = smoothed_imm_track(&imm, &h, &states[1..])
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("rows against"), "{e}");
     }
 }

@@ -2,7 +2,8 @@
 //! `--smooth-lag-seconds S`, the single-target engine's [`crate::single`] and the
 //! command's smoothing of the tracker's tracks): a track's filtered estimates, one per
 //! row, smoothed by the RTS smoother of `argus_filters` (KF, EKF) or the IMM smoothers of
-//! `argus_imm` ([`ModeRecorder`]).
+//! `argus_imm` ([`ModeRecorder`]); the tracker's tracks by their one smoother,
+//! [`TrackSmoother`].
 //!
 //! # What is smoothed, and why it is exact
 //! Rows of one time (plots of one instant applied in turn, scans of two sensors at one
@@ -28,8 +29,10 @@
 //! step (0 is the track's first estimate) and its time.
 
 mod record;
+mod track;
 
 pub use record::{AircraftRecorder, ImmRecorder, ModeRecorder};
+pub use track::{FilteredRow, SmoothedRow, TrackSmoother};
 
 use argus_core_math::Gaussian;
 use argus_filters::{Lag, RtsStep, SmoothError, SmoothingFilter, rts_smooth};
