@@ -3,9 +3,9 @@
 //! combined estimate, the mode probabilities and (for the noise estimators) the
 //! measurement-noise estimate after every plot.
 
-use argus_filters::Kf;
 use argus_imm::{
-    DifferenceNoiseImm, Imm, ImmError, MarkovMatrix, MultiImm, NoiseGrid, NoiseVariances,
+    DifferenceNoiseImm, Imm, ImmError, MultiImm, NoiseGrid, NoiseVariances, PlanarImm, markov_rows,
+    planar_filters,
 };
 use argus_motion_models::{CoordinatedTurn, Cv2D, PlanarModel};
 use pyo3::PyClassInitializer;
@@ -15,10 +15,10 @@ use pyo3::types::PyTuple;
 use crate::arrays::{finite, matrix, out_array, read};
 use crate::errors::{Kind, input, invalid, raise};
 use crate::filters::intervals;
-use crate::imm_core::{Difference, DynImm, ImmFail, Multi, PlainImm, PlanarImm, Plots};
+use crate::imm_core::{Difference, DynImm, ImmFail, Multi, PlainImm, Plots};
 
-/// The largest mode count built.
-const MAX_MODES: usize = 4;
+/// The largest mode count built (`argus_imm::by_mode_count!`'s).
+const MAX_MODES: usize = argus_imm::MAX_PLANAR_MODES;
 
 /// The models of `models`: `("cv", q)` (q = σ of the white acceleration, m/s²) or
 /// `("ct", q, omega)` (omega in rad/s).
@@ -72,33 +72,26 @@ fn planar_models(models: &Bound<'_, PyAny>) -> PyResult<Vec<PlanarModel>> {
     Ok(out)
 }
 
+/// The IMM of `models` with the row-major `R × R` `transition`, built by the library
+/// (`argus_imm::planar_filters`, `argus_imm::markov_rows`).
 fn build_imm<const R: usize>(models: &[PlanarModel], transition: &[f64]) -> PyResult<PlanarImm<R>> {
-    let mut filters = Vec::with_capacity(R);
-    for m in models {
-        filters.push(Kf::new(*m));
-    }
-    let filters: [Kf<PlanarModel>; R] = filters
-        .try_into()
-        .map_err(|_| input("argument 'models': count mismatch"))?;
-    let mut rows = [[0.0; R]; R];
-    for (i, row) in rows.iter_mut().enumerate() {
-        row.copy_from_slice(&transition[i * R..(i + 1) * R]);
-    }
+    let filters =
+        planar_filters::<R>(models).map_err(|_| input("argument 'models': count mismatch"))?;
+    let rows: Vec<Vec<f64>> = transition.chunks(R).map(<[f64]>::to_vec).collect();
     let markov =
-        MarkovMatrix::new(rows).map_err(|e| invalid("ImmError", "argument 'transition'", &e))?;
+        markov_rows::<R>(&rows).map_err(|e| invalid("ImmError", "argument 'transition'", &e))?;
     Imm::new(filters, markov).map_err(|e| invalid("ImmError", "argument 'models'", &e))
 }
 
-/// Calls `$f::<R>(args…)` for the run-time mode count.
+/// Calls `$f::<R>(args…)` for the run-time mode count (`argus_imm::by_mode_count!`).
 macro_rules! by_modes {
     ($r:expr, $f:ident, $($arg:expr),*) => {
-        match $r {
-            1 => $f::<1>($($arg),*),
-            2 => $f::<2>($($arg),*),
-            3 => $f::<3>($($arg),*),
-            4 => $f::<4>($($arg),*),
-            r => Err(input(format!("{r} models: 1 to {MAX_MODES} are built"))),
-        }
+        argus_imm::by_mode_count!(
+            $r,
+            |r| Err(input(format!("{r} models: 1 to {MAX_MODES} are built"))),
+            $f,
+            $($arg),*
+        )
     };
 }
 

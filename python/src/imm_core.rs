@@ -6,14 +6,11 @@
 use argus_core_math::{Gaussian, Matrix, Vector};
 use argus_filters::Kf;
 use argus_imm::{
-    DifferenceEstimate, DifferenceNoiseImm, Imm, ImmError, ImmEstimate, MultiImm, MultiImmEstimate,
-    NoiseVariances, UnbiasedConversion,
+    DifferenceEstimate, DifferenceNoiseImm, ImmError, ImmEstimate, MultiImm, MultiImmEstimate,
+    NoiseVariances, PlanarImm, UnbiasedConversion,
 };
 use argus_motion_models::PlanarModel;
 use argus_sensors::{CartesianPosition, PolarMeasurement, UnbiasedPolarConversion};
-
-/// The IMM of `R` Kalman filters on the planar models.
-pub(crate) type PlanarImm<const R: usize> = Imm<Kf<PlanarModel>, 4, R>;
 
 /// How plots are read.
 #[derive(Debug, Clone, Copy)]

@@ -96,6 +96,12 @@ def test_bad_constructor_arguments():
         at.Imm([("cv", 1.0), ("xx", 5.0)], np.eye(2), R=R)
     with pytest.raises(InvalidInputError, match=r"argument 'n': 4 noise hypotheses"):
         at.MultiImm([("cv", 1.0)], np.eye(1), sigma_range=50.0, sigma_azimuth=0.001, n=4)
+    # The library's mode counts (argus_imm::MAX_PLANAR_MODES = 5, as `argus track`'s IMM):
+    # five models are built, six are refused by name.
+    five = [("cv", 1.0)] + [("ct", 1.0, w) for w in (0.02, -0.02, 0.05, -0.05)]
+    assert at.Imm(five, np.eye(5), R=R).modes == 5
+    with pytest.raises(InvalidInputError, match=r"argument 'models': 6 models \(1 to 5 are built\)"):
+        at.Imm(five + [("cv", 3.0)], np.eye(6), R=R)
 
 
 def test_imm_step_errors_name_the_step():

@@ -5,6 +5,9 @@
 //!   sharing an `N`-state: mixing with the spread-of-means term, mode probabilities in log
 //!   space, combination; the interval is an argument of every cycle. [`MarkovMatrix`]
 //!   validates the transition matrix; [`Embedded`] lifts a smaller model into the common state.
+//!   [`PlanarImm`] is the IMM of Kalman filters on CV / fixed-rate CT models built from a
+//!   run-time list ([`planar_filters`], [`markov_rows`]), its mode count picked by
+//!   [`by_mode_count!`] (1 … [`MAX_PLANAR_MODES`]).
 //! - [`MultiImm`]: the estimator of seed 000 eqs (8)–(14): `K` IMMs differing only in the
 //!   assumed range/azimuth variances, per-step noise-mode probabilities with a uniform prior,
 //!   reference update, `±p` grid and per-step clip, all parameters ([`NoiseGrid`]), with an
@@ -55,6 +58,7 @@ mod imm;
 mod markov;
 mod multi;
 mod multi_merged;
+mod planar;
 mod polar;
 pub mod smooth;
 mod variational;
@@ -76,6 +80,7 @@ pub use evidence::{EvidenceEstimate, EvidenceNoiseImm};
 pub use imm::{Imm, ImmEstimate, ImmPrediction, ImmUpdate, moment_match};
 pub use markov::{MarkovMatrix, PROBABILITY_SUM_TOL, log_probabilities, log_sum_exp};
 pub use multi::{MultiImm, MultiImmEstimate, MultiImmUpdate, NoiseGrid};
+pub use planar::{MAX_PLANAR_MODES, PlanarImm, markov_rows, planar_filters};
 pub use polar::{
     NoiseVariances, PlotConversion, PositionMeasurement, UnbiasedConversion, unbiased_conversion,
 };

@@ -18,12 +18,11 @@
 //! `mu_1s …`, as for the IMM.
 
 use argus_core_math::Gaussian;
-use argus_filters::{Kf, two_point_cv2};
+use argus_filters::two_point_cv2;
 use argus_imm::{
-    Imm, ImmError, ImmEstimate, MarkovMatrix, MultiImm, MultiImmEstimate, NoiseGrid,
-    NoiseVariances, UnbiasedConversion,
+    Imm, ImmError, ImmEstimate, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlanarImm,
+    UnbiasedConversion, markov_rows, planar_filters,
 };
-use argus_motion_models::PlanarModel;
 use argus_sensors::Measurement;
 
 use super::error::{OneRadar, SingleError};
@@ -34,17 +33,11 @@ use super::spec::{ImmSpec, MultiSpec};
 use super::start::{Ctx, two_point};
 use crate::smooth::ImmRecorder;
 
-/// Calls `$f::<R>(args…)` for the run-time mode count `R ∈ 1 … MAX_MODELS`.
+/// Calls `$f::<R>(args…)` for the run-time mode count `R ∈ 1 … MAX_MODELS`
+/// ([`argus_imm::by_mode_count!`]).
 macro_rules! by_modes {
     ($r:expr, $f:ident, $($arg:expr),*) => {
-        match $r {
-            1 => $f::<1>($($arg),*),
-            2 => $f::<2>($($arg),*),
-            3 => $f::<3>($($arg),*),
-            4 => $f::<4>($($arg),*),
-            5 => $f::<5>($($arg),*),
-            count => Err(SingleError::ModeCount { count }),
-        }
+        argus_imm::by_mode_count!($r, |count| Err(SingleError::ModeCount { count }), $f, $($arg),*)
     };
 }
 
@@ -86,22 +79,11 @@ fn count_mismatch() -> ImmError {
 ///
 /// # Errors
 /// [`SingleError::Imm`] for an invalid Markov matrix or a mode count other than `R`.
-fn build_imm<const R: usize>(spec: &ImmSpec) -> Result<Imm<Kf<PlanarModel>, 4, R>, SingleError> {
-    let filters: [Kf<PlanarModel>; R] = spec
-        .models
-        .iter()
-        .map(|m| Kf::new(*m))
-        .collect::<Vec<_>>()
-        .try_into()
-        .map_err(|_| count_mismatch())?;
-    let rows = spec
-        .markov
-        .iter()
-        .map(|r| <[f64; R]>::try_from(r.as_slice()))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|_| count_mismatch())?;
-    let rows: [[f64; R]; R] = rows.try_into().map_err(|_| count_mismatch())?;
-    Ok(Imm::new(filters, MarkovMatrix::new(rows)?)?)
+fn build_imm<const R: usize>(spec: &ImmSpec) -> Result<PlanarImm<R>, SingleError> {
+    Ok(Imm::new(
+        planar_filters::<R>(&spec.models)?,
+        markov_rows::<R>(&spec.markov)?,
+    )?)
 }
 
 /// The IMM's start: every mode from the two-point start, with `spec`'s `μ₀`.

@@ -27,7 +27,7 @@ pub enum EstimatorSpec {
 
 /// The largest number of motion models an IMM of [`EstimatorSpec::Imm`] may have (the
 /// mode count is a compile-time size; 1 … 5 are built).
-pub const MAX_MODELS: usize = 5;
+pub const MAX_MODELS: usize = argus_imm::MAX_PLANAR_MODES;
 
 /// A checked IMM description: one planar motion model per mode, the Markov matrix (rows
 /// of `models.len()` entries) and the initial mode probabilities.
