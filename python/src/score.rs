@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use argus_score::{ScoreConfig, ScoreError, Scorer, read_tracks, read_tracks_from};
-use argus_score::{read_truth, read_truth_from};
+use argus_score::{ScoreConfig, ScoreError, Scorer, read_tracks, read_tracks_columns};
+use argus_score::{read_truth, read_truth_columns};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -23,28 +23,11 @@ fn score_error(e: &ScoreError) -> PyErr {
 }
 
 /// One table: `("path", path)` or `("columns", names, columns, name)` (columns as
-/// `track_columns` takes them).
+/// `track_columns` takes them), read by `argus_score`'s readers (their checks and errors,
+/// `name:LINE: field 'f'`, row `i` being line `i + 2`).
 enum Table {
     Path(std::path::PathBuf),
-    Csv(String, String),
-}
-
-/// CSV text of a table given as columns, for the score crate's readers (their checks and
-/// errors, `name:LINE: field 'f'`, row `i` being line `i + 2`).
-///
-/// TODO: build `argus_score`'s `TrackHistory` / `TruthPath` from the columns directly,
-/// once its readers' row checks are shared with a column source (as
-/// `argus_io::plotfile::from_columns` does for plots); the text is made here, in Rust.
-fn columns_text(names: &[String], columns: &[Owned]) -> String {
-    let mut text = names.join(",");
-    text.push('\n');
-    let n = columns.first().map_or(0, Owned::len);
-    for i in 0..n {
-        let row: Vec<String> = columns.iter().map(|c| c.cell_text(i)).collect();
-        text.push_str(&row.join(","));
-        text.push('\n');
-    }
-    text
+    Columns(Vec<String>, Vec<Owned>, String),
 }
 
 impl Table {
@@ -61,10 +44,7 @@ impl Table {
                     .iter()
                     .map(Owned::from_py)
                     .collect::<PyResult<_>>()?;
-                Ok(Self::Csv(
-                    columns_text(&names, &columns),
-                    obj.get_item(3)?.extract()?,
-                ))
+                Ok(Self::Columns(names, columns, obj.get_item(3)?.extract()?))
             }
             other => Err(input(format!(
                 "argument '{what}': unknown table kind {other:?}"
@@ -136,11 +116,19 @@ pub(crate) fn score_json(
     py.detach(|| {
         let tracks = match &tracks {
             Table::Path(p) => read_tracks(Path::new(p))?,
-            Table::Csv(text, name) => read_tracks_from(text.as_bytes(), name)?,
+            Table::Columns(names, c, name) => read_tracks_columns(
+                names,
+                &c.iter().map(Owned::column).collect::<Vec<_>>(),
+                name,
+            )?,
         };
         let truth = match &truth {
             Table::Path(p) => read_truth(Path::new(p))?,
-            Table::Csv(text, name) => read_truth_from(text.as_bytes(), name)?,
+            Table::Columns(names, c, name) => read_truth_columns(
+                names,
+                &c.iter().map(Owned::column).collect::<Vec<_>>(),
+                name,
+            )?,
         };
         Scorer::new(config)?.score(&tracks, &truth)
     })

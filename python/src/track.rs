@@ -71,25 +71,7 @@ impl Owned {
         })
     }
 
-    /// The text of row `i`'s cell (numbers as `{}` writes them, which reads back to the
-    /// same value).
-    pub(crate) fn cell_text(&self, i: usize) -> String {
-        match self {
-            Self::Float(v) => v[i].to_string(),
-            Self::Int(v) => v[i].to_string(),
-            Self::Text(v) => v[i].clone(),
-        }
-    }
-
-    pub(crate) fn len(&self) -> usize {
-        match self {
-            Self::Float(v) => v.len(),
-            Self::Int(v) => v.len(),
-            Self::Text(v) => v.len(),
-        }
-    }
-
-    fn column(&self) -> Column<'_> {
+    pub(crate) fn column(&self) -> Column<'_> {
         match self {
             Self::Float(v) => Column::Float(v),
             Self::Int(v) => Column::Int(v),

@@ -464,32 +464,16 @@ fn row_plot<'a>(
     Ok(FilePlot { line, plot })
 }
 
-/// A column of a plot table given as values ([`from_columns`]).
-#[derive(Debug, Clone, Copy)]
-pub enum Column<'a> {
-    /// Floating-point values.
-    Float(&'a [f64]),
-    /// Integer values (a sensor id column, or numbers).
-    Int(&'a [i64]),
-    /// Text (the `origin` column, which is not read; or text of numbers).
-    Text(&'a [String]),
-}
+/// A column of a plot table given as values ([`from_columns`]): the table column of
+/// `argus_score`'s readers (the `origin` column, text, is not read).
+pub use argus_score::Column;
 
-impl Column<'_> {
-    fn len(&self) -> usize {
-        match self {
-            Self::Float(v) => v.len(),
-            Self::Int(v) => v.len(),
-            Self::Text(v) => v.len(),
-        }
-    }
-
-    fn cell(&self, i: usize) -> Cell<'_> {
-        match self {
-            Self::Float(v) => Cell::Float(v[i]),
-            Self::Int(v) => Cell::Int(v[i]),
-            Self::Text(v) => Cell::Text(v[i].trim()),
-        }
+/// Row `i`'s cell of `column`.
+fn cell<'a>(column: &Column<'a>, i: usize) -> Cell<'a> {
+    match *column {
+        Column::Float(v) => Cell::Float(v[i]),
+        Column::Int(v) => Cell::Int(v[i]),
+        Column::Text(v) => Cell::Text(v[i].trim()),
     }
 }
 
@@ -527,7 +511,7 @@ pub fn from_columns(
                 names
                     .iter()
                     .position(|n| *n == c)
-                    .map_or(Cell::Text(""), |k| columns[k].cell(i))
+                    .map_or(Cell::Text(""), |k| cell(&columns[k], i))
             };
             row_plot(name, layout, i as u64 + 2, &mut last_t, cell)
         })

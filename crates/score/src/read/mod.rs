@@ -13,12 +13,23 @@
 //! labels work as well as Argus's integers. Every malformed field is reported as
 //! `file:line: field 'name': what`.
 
+mod table;
+
 use std::collections::HashMap;
 use std::io::Read;
 use std::path::Path;
 
+pub use table::Column;
+use table::{Columns, Csv, Source, Table};
+
 use crate::error::ScoreError;
 use crate::input::{TrackHistory, TrackRow, TruthPath, TruthSample};
+
+/// The truth table's columns.
+const TRUTH: [&str; 6] = ["t", "target", "x", "vx", "y", "vy"];
+/// The tracks table's required columns, then its optional one.
+const TRACKS: [&str; 6] = ["t", "track", "x", "vx", "y", "vy"];
+const TRACKS_OPTIONAL: [&str; 1] = ["status"];
 
 /// Reads a truth CSV file.
 ///
@@ -36,7 +47,30 @@ pub fn read_truth(path: &Path) -> Result<Vec<TruthPath>, ScoreError> {
 /// that does not parse or is not finite, an empty name, a sample not after the same
 /// aircraft's previous one) and [`ScoreError::NoTruth`] for a file without rows.
 pub fn read_truth_from(reader: impl Read, file: &str) -> Result<Vec<TruthPath>, ScoreError> {
-    let mut table = Table::new(reader, file, &["t", "target", "x", "vx", "y", "vy"], &[])?;
+    truth(Table::new(Csv::new(reader, file)?, file, &TRUTH, &[])?)
+}
+
+/// Reads a truth table given as columns (`names[i]` names `columns[i]`; a DataFrame's, a
+/// structured array's), with the checks and errors of [`read_truth_from`]: row `i` is
+/// reported as `file:LINE` with `LINE = i + 2`, as if the table were a CSV file.
+///
+/// # Errors
+/// As [`read_truth_from`]; [`ScoreError::Syntax`] for columns of different lengths.
+pub fn read_truth_columns(
+    names: &[String],
+    columns: &[Column<'_>],
+    file: &str,
+) -> Result<Vec<TruthPath>, ScoreError> {
+    truth(Table::new(
+        Columns::new(names, columns, file)?,
+        file,
+        &TRUTH,
+        &[],
+    )?)
+}
+
+fn truth<S: Source>(mut table: Table<'_, S>) -> Result<Vec<TruthPath>, ScoreError> {
+    let file = table.file();
     let mut groups = Groups::default();
     while let Some(line) = table.next_row()? {
         let t = table.number(0)?;
@@ -48,7 +82,7 @@ pub fn read_truth_from(reader: impl Read, file: &str) -> Result<Vec<TruthPath>, 
             y: table.number(4)?,
             vy: table.number(5)?,
         };
-        let prev = groups.push(name, t, line, sample);
+        let prev = groups.push(&name, t, line, sample);
         if let Some((pt, pl)) = prev
             && t <= pt
         {
@@ -89,17 +123,39 @@ pub fn read_tracks(path: &Path) -> Result<Vec<TrackHistory>, ScoreError> {
 /// that does not parse or is not finite, an empty name, an unknown status, a row before
 /// the same track's previous one).
 pub fn read_tracks_from(reader: impl Read, file: &str) -> Result<Vec<TrackHistory>, ScoreError> {
-    let mut table = Table::new(
-        reader,
+    tracks(Table::new(
+        Csv::new(reader, file)?,
         file,
-        &["t", "track", "x", "vx", "y", "vy"],
-        &["status"],
-    )?;
+        &TRACKS,
+        &TRACKS_OPTIONAL,
+    )?)
+}
+
+/// Reads a tracks table given as columns, with the checks and errors of
+/// [`read_tracks_from`] (row `i` at `file:LINE`, `LINE = i + 2`, as
+/// [`read_truth_columns`]).
+///
+/// # Errors
+/// As [`read_tracks_from`]; [`ScoreError::Syntax`] for columns of different lengths.
+pub fn read_tracks_columns(
+    names: &[String],
+    columns: &[Column<'_>],
+    file: &str,
+) -> Result<Vec<TrackHistory>, ScoreError> {
+    tracks(Table::new(
+        Columns::new(names, columns, file)?,
+        file,
+        &TRACKS,
+        &TRACKS_OPTIONAL,
+    )?)
+}
+
+fn tracks<S: Source>(mut table: Table<'_, S>) -> Result<Vec<TrackHistory>, ScoreError> {
     let mut groups = Groups::default();
     while let Some(line) = table.next_row()? {
         let t = table.number(0)?;
         let name = table.name(1)?;
-        let confirmed = match table.optional(6) {
+        let confirmed = match table.optional(6).as_deref() {
             None => true,
             Some("confirmed") => true,
             Some("tentative" | "deleted") => false,
@@ -116,7 +172,7 @@ pub fn read_tracks_from(reader: impl Read, file: &str) -> Result<Vec<TrackHistor
             y: table.number(4)?,
             vy: table.number(5)?,
         };
-        let prev = groups.push(name, t, line, row);
+        let prev = groups.push(&name, t, line, row);
         if let Some((pt, pl)) = prev
             && t < pt
         {
@@ -173,107 +229,5 @@ impl<T> Groups<T> {
             self.items.push((name.to_string(), vec![item]));
             None
         }
-    }
-}
-
-/// A CSV file with named columns: required ones first, then optional ones, by index.
-struct Table<'a, R: Read> {
-    file: &'a str,
-    rdr: csv::Reader<R>,
-    record: csv::StringRecord,
-    names: Vec<&'static str>,
-    cols: Vec<Option<usize>>,
-    line: u64,
-}
-
-impl<'a, R: Read> Table<'a, R> {
-    fn new(
-        reader: R,
-        file: &'a str,
-        required: &[&'static str],
-        optional: &[&'static str],
-    ) -> Result<Self, ScoreError> {
-        let mut rdr = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .from_reader(reader);
-        let header = rdr.headers().map_err(|e| syntax(file, &e))?.clone();
-        let find = |name: &str| header.iter().position(|h| h == name);
-        let mut cols = Vec::new();
-        for &name in required {
-            match find(name) {
-                Some(i) => cols.push(Some(i)),
-                None => {
-                    return Err(ScoreError::MissingColumn {
-                        file: file.to_string(),
-                        column: name,
-                    });
-                }
-            }
-        }
-        cols.extend(optional.iter().map(|n| find(n)));
-        Ok(Self {
-            file,
-            rdr,
-            record: csv::StringRecord::new(),
-            names: required.iter().chain(optional).copied().collect(),
-            cols,
-            line: 1,
-        })
-    }
-
-    /// Reads the next row; returns its line, `None` at the end.
-    fn next_row(&mut self) -> Result<Option<u64>, ScoreError> {
-        match self.rdr.read_record(&mut self.record) {
-            Ok(true) => {
-                self.line = self
-                    .record
-                    .position()
-                    .map_or(self.line + 1, csv::Position::line);
-                Ok(Some(self.line))
-            }
-            Ok(false) => Ok(None),
-            Err(e) => Err(syntax(self.file, &e)),
-        }
-    }
-
-    fn raw(&self, col: usize) -> Option<&str> {
-        self.cols[col].and_then(|i| self.record.get(i))
-    }
-
-    fn optional(&self, col: usize) -> Option<&str> {
-        self.raw(col)
-    }
-
-    fn name(&self, col: usize) -> Result<&str, ScoreError> {
-        match self.raw(col) {
-            Some(s) if !s.is_empty() => Ok(s),
-            _ => Err(self.field_error(col, "empty".to_string())),
-        }
-    }
-
-    fn number(&self, col: usize) -> Result<f64, ScoreError> {
-        let s = self.raw(col).unwrap_or("");
-        match s.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            Ok(v) => Err(self.field_error(col, format!("{v} is not a finite number"))),
-            Err(_) => Err(self.field_error(col, format!("'{s}' is not a number"))),
-        }
-    }
-
-    fn field_error(&self, col: usize, message: String) -> ScoreError {
-        ScoreError::Field {
-            file: self.file.to_string(),
-            line: self.line,
-            field: self.names[col],
-            message,
-        }
-    }
-}
-
-fn syntax(file: &str, e: &csv::Error) -> ScoreError {
-    ScoreError::Syntax {
-        file: file.to_string(),
-        line: e.position().map_or(1, csv::Position::line),
-        message: e.to_string(),
     }
 }
