@@ -255,6 +255,8 @@ impl<'a> Point<'a> {
 pub struct TrackRows {
     columns: Vec<Column>,
     text: String,
+    /// Whether `text` still begins with the header (until the first `write_to`).
+    header_held: bool,
     rows: usize,
     reference: Option<Reference>,
 }
@@ -268,6 +270,7 @@ impl TrackRows {
         Self {
             columns,
             text,
+            header_held: true,
             rows: 0,
             reference: None,
         }
@@ -338,14 +341,11 @@ impl TrackRows {
     /// text the CSV holds (an empty cell as NaN).
     pub fn columns(&self) -> Vec<(String, ColumnValues)> {
         let names: Vec<String> = self.columns.iter().map(|c| c.name()).collect();
-        let body = self.text.split_once('\n').map_or("", |(head, body)| {
-            // After `write_to` the text holds rows only.
-            if head == names.join(",") {
-                body
-            } else {
-                self.text.as_str()
-            }
-        });
+        let body = if self.header_held {
+            self.text.split_once('\n').map_or("", |(_, body)| body)
+        } else {
+            self.text.as_str()
+        };
         columns_of_text(&names, body)
     }
 
@@ -362,6 +362,7 @@ impl TrackRows {
     pub fn write_to(&mut self, file: &mut AtomicFile) -> Result<(), IoError> {
         file.write(self.text.as_bytes())?;
         self.text.clear();
+        self.header_held = false;
         Ok(())
     }
 
@@ -543,5 +544,34 @@ mod tests {
         };
         assert!(mu[0].is_nan());
         assert!((mu[1] - 0.25).abs() == 0.0);
+    }
+
+    #[test]
+    fn columns_after_a_write_hold_the_rows_since() {
+        // After write_to the text holds rows only: columns() then reads every held row,
+        // and before it skips the header, whatever the rows' text is.
+        let g = Gaussian::new(Vector::<4>::zeros(), Matrix::<4, 4>::identity()).unwrap();
+        let dir = std::env::temp_dir().join(format!("argus-rows-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("t.csv");
+        let mut rows = TrackRows::new(Column::tracker(0, false, false));
+        rows.push(&Point::new(1.0, &g).of_track(1, 1, "tentative", ""));
+        assert_eq!(rows.columns()[0].1, ColumnValues::F64(vec![1.0]));
+        let mut file = AtomicFile::create(&path).unwrap();
+        rows.write_to(&mut file).unwrap();
+        assert!(rows.columns().iter().all(|(_, c)| c
+            == &empty_column(match c {
+                ColumnValues::I64(_) => "track",
+                ColumnValues::Text(_) => "status",
+                ColumnValues::F64(_) => "t",
+            })));
+        rows.push(&Point::new(2.0, &g).of_track(1, 1, "confirmed", ""));
+        rows.push(&Point::new(3.0, &g).of_track(1, 1, "confirmed", ""));
+        assert_eq!(rows.columns()[0].1, ColumnValues::F64(vec![2.0, 3.0]));
+        rows.write_to(&mut file).unwrap();
+        file.commit().unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(text.lines().count(), 4, "{text}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
