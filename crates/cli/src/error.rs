@@ -33,24 +33,6 @@ pub enum CliError {
     /// The simulation rejected a parameter.
     #[error("simulation: {0}")]
     Sim(#[from] argus_sim::SimError),
-    /// A filter step failed.
-    #[error("filter: {0}")]
-    Filter(#[from] argus_filters::FilterError),
-    /// A measurement model rejected a value.
-    #[error("sensor: {0}")]
-    Sensor(#[from] argus_sensors::SensorError),
-    /// A motion model rejected a value.
-    #[error("motion model: {0}")]
-    Motion(#[from] argus_motion_models::MotionError),
-    /// A numerical check failed.
-    #[error("math: {0}")]
-    Math(#[from] argus_core_math::MathError),
-    /// An IMM or multi-IMM rejected a value.
-    #[error("imm: {0}")]
-    Imm(#[from] argus_imm::ImmError),
-    /// The multi-target tracker rejected a configuration or a plot.
-    #[error("tracker: {0}")]
-    Tracker(#[from] argus_tracker::TrackerError),
     /// A scenario failed (a bad `--set` value is printed the way the command spells it).
     #[error("{}", scenario_message(.0))]
     Scenario(ScenarioError),
@@ -60,44 +42,15 @@ pub enum CliError {
     /// A merged campaign is not whole (a shard or runs missing or given twice).
     #[error("{0}")]
     Merge(#[from] crate::merge_error::MergeError),
-    /// Smoothing a track failed (`argus track --smooth`): nothing is written.
-    #[error("smoothing track {track}: step {step} (t = {time} s): {message}")]
-    Smooth {
-        /// The track (1 for the single-target job).
-        track: u64,
-        /// The step (0 is the track's first estimate; rows of one time are one step).
-        step: usize,
-        /// The step's time (s).
-        time: f64,
-        /// What failed.
-        message: String,
-    },
-    /// A packet capture that cannot be read at all (its header, its link type).
-    #[error("{file}: {source}")]
-    Capture {
-        /// The capture.
-        file: PathBuf,
-        /// Why.
-        source: argus_capture::CaptureError,
-    },
-    /// An ASTERIX plot of a radar (SAC/SIC) that the configuration does not have.
-    #[error(
-        "{file}: ASTERIX record {record}: I048/010 SAC {sac} SIC {sic} is no [[sensor]] of {config} (known SAC/SIC: {known})"
-    )]
-    UnknownSource {
-        /// The capture or block file.
-        file: PathBuf,
-        /// 1-based number of the record among the file's decoded records.
-        record: u64,
-        /// System area code.
-        sac: u8,
-        /// System identification code.
-        sic: u8,
-        /// The configuration.
-        config: PathBuf,
-        /// The configuration's sensors as `SAC/SIC`.
-        known: String,
-    },
+    /// A configuration error other than a bad value or an unreadable file, printed as
+    /// `argus_config` prints it.
+    #[error(transparent)]
+    Config(ConfigError),
+    /// An `argus track` file error (`argus_io`'s: a plot or capture that cannot be read,
+    /// a record of an unknown radar, a track that cannot be smoothed, …), printed as
+    /// `argus_io` prints it.
+    #[error(transparent)]
+    File(IoError),
     /// Drawing a figure failed.
     #[error("figure {file}: {message}")]
     Plot {
@@ -134,58 +87,22 @@ impl From<ConfigError> for CliError {
         match e {
             ConfigError::Input { at, message } => Self::Input { at, message },
             ConfigError::Io { path, source } => Self::Io { path, source },
-            ConfigError::Motion(e) => Self::Motion(e),
-            // `ConfigError` is `#[non_exhaustive]`: a variant added later keeps its text.
-            e => Self::Usage(e.to_string()),
+            e => Self::Config(e),
         }
     }
 }
 
 impl From<IoError> for CliError {
-    /// Each file error as the variant it is printed by (the same text).
+    /// A file error as the command's: a value at a file line and key as
+    /// [`CliError::Input`] (the same text, for one match over every bad input), the
+    /// configuration's own errors as [`From<ConfigError>`] maps them, every other error
+    /// as it is ([`CliError::File`]).
     fn from(e: IoError) -> Self {
         match e {
             IoError::Input { at, message } => Self::Input { at, message },
             IoError::Io { path, source } => Self::Io { path, source },
-            IoError::Capture { file, source } => Self::Capture { file, source },
-            IoError::UnknownSource {
-                file,
-                record,
-                sac,
-                sic,
-                config,
-                known,
-            } => Self::UnknownSource {
-                file,
-                record,
-                sac,
-                sic,
-                config,
-                known,
-            },
-            IoError::Encode(message) => Self::Usage(message),
-            IoError::Score(e) => Self::Score(e),
             IoError::Config(e) => Self::from(e),
-            IoError::Usage(message) => Self::Usage(message),
-            IoError::Filter(e) => Self::Filter(e),
-            IoError::Sensor(e) => Self::Sensor(e),
-            IoError::Motion(e) => Self::Motion(e),
-            IoError::Math(e) => Self::Math(e),
-            IoError::Imm(e) => Self::Imm(e),
-            IoError::Tracker(e) => Self::Tracker(e),
-            IoError::Smooth {
-                track,
-                step,
-                time,
-                message,
-            } => Self::Smooth {
-                track,
-                step,
-                time,
-                message,
-            },
-            // `IoError` is `#[non_exhaustive]`: a variant added later keeps its text.
-            e => Self::Usage(e.to_string()),
+            e => Self::File(e),
         }
     }
 }

@@ -13,7 +13,7 @@ use crate::error::CliError;
 ///
 /// # Errors
 /// [`CliError::Input`] for bad configuration or plots, filter errors, I/O;
-/// [`CliError::Smooth`] for a track that cannot be smoothed.
+/// [`CliError::File`] for a track that cannot be smoothed ([`argus_io::IoError::Smooth`]).
 pub fn run(
     config: &Path,
     plots: &Path,
