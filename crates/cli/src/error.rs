@@ -146,11 +146,7 @@ impl CliError {
         message: impl Into<String>,
     ) -> Self {
         Self::Input {
-            at: Location {
-                file: file.to_path_buf(),
-                line,
-                field: field.map(str::to_owned),
-            },
+            at: Location::new(file, line, field),
             message: message.into(),
         }
     }

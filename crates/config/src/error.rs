@@ -14,6 +14,18 @@ pub struct Location {
     pub field: Option<String>,
 }
 
+impl Location {
+    /// The place `file:line`, field `field` (either may be unknown).
+    #[must_use]
+    pub fn new(file: &Path, line: Option<u64>, field: Option<&str>) -> Self {
+        Self {
+            file: file.to_path_buf(),
+            line,
+            field: field.map(str::to_owned),
+        }
+    }
+}
+
 impl std::fmt::Display for Location {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{}", self.file.display())?;
@@ -61,11 +73,7 @@ impl ConfigError {
         message: impl Into<String>,
     ) -> Self {
         Self::Input {
-            at: Location {
-                file: file.to_path_buf(),
-                line,
-                field: field.map(str::to_owned),
-            },
+            at: Location::new(file, line, field),
             message: message.into(),
         }
     }

@@ -105,11 +105,7 @@ impl IoError {
         message: impl Into<String>,
     ) -> Self {
         Self::Input {
-            at: Location {
-                file: file.to_path_buf(),
-                line,
-                field: field.map(str::to_owned),
-            },
+            at: Location::new(file, line, field),
             message: message.into(),
         }
     }
