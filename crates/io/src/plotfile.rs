@@ -5,6 +5,9 @@
 use std::path::Path;
 
 use argus_core_math::{Matrix, Vector};
+// A cell of a plot table: a CSV field's text (empty when the column is absent), or a
+// value of a column (`from_columns`).
+use argus_score::Cell;
 use argus_sensors::{
     CartesianMeasurement, Measurement, Plot, PolarMeasurement, SensorId, SphericalMeasurement,
 };
@@ -306,43 +309,14 @@ fn layout_of(cols: &[String], path: &Path) -> Result<Layout, IoError> {
     Ok(layout)
 }
 
-/// One cell of a plot table: a CSV field's text (empty when the column is absent), or a
-/// value of a column array ([`from_columns`]).
-#[derive(Debug, Clone, Copy)]
-enum Cell<'a> {
-    Text(&'a str),
-    Float(f64),
-    Int(i64),
-}
-
-impl Cell<'_> {
-    /// The sensor id it holds: a non-negative integer that fits a `u32`.
-    fn sensor(self) -> Option<u32> {
-        match self {
-            Self::Text(raw) => raw.parse().ok(),
-            Self::Int(i) => u32::try_from(i).ok(),
-            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-            Self::Float(v) => {
-                (v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&v)).then_some(v as u32)
-            }
-        }
-    }
-
-    /// Whether it holds a value (an empty CSV field holds none).
-    fn is_given(self) -> bool {
-        match self {
-            Self::Text(raw) => !raw.trim().is_empty(),
-            Self::Float(_) | Self::Int(_) => true,
-        }
-    }
-}
-
-impl std::fmt::Display for Cell<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Self::Text(raw) => f.write_str(raw),
-            Self::Float(v) => write!(f, "{v}"),
-            Self::Int(i) => write!(f, "{i}"),
+/// The sensor id a cell of a plot table holds: a non-negative integer that fits a `u32`.
+fn sensor_id(cell: Cell<'_>) -> Option<u32> {
+    match cell {
+        Cell::Text(raw) => raw.parse().ok(),
+        Cell::Int(i) => u32::try_from(i).ok(),
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        Cell::Float(v) => {
+            (v.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&v)).then_some(v as u32)
         }
     }
 }
@@ -385,7 +359,7 @@ fn row_plot<'a>(
     }
     *last_t = time;
     let raw_sensor = cell(SENSOR);
-    let sensor: u32 = raw_sensor.sensor().ok_or_else(|| {
+    let sensor: u32 = sensor_id(raw_sensor).ok_or_else(|| {
         at(
             SENSOR,
             format!("'{raw_sensor}' is not a sensor id (a non-negative integer)"),
@@ -468,15 +442,6 @@ fn row_plot<'a>(
 /// `argus_score`'s readers (the `origin` column, text, is not read).
 pub use argus_score::Column;
 
-/// Row `i`'s cell of `column`.
-fn cell<'a>(column: &Column<'a>, i: usize) -> Cell<'a> {
-    match *column {
-        Column::Float(v) => Cell::Float(v[i]),
-        Column::Int(v) => Cell::Int(v[i]),
-        Column::Text(v) => Cell::Text(v[i].trim()),
-    }
-}
-
 /// The plots of a table given as columns (`names[k]` holding `columns[k]`), with exactly
 /// the checks of [`read`] on the equivalent plot file: its header `names`, row `i` its
 /// line `i + 2`; `name` stands for the file's path in errors.
@@ -511,7 +476,9 @@ pub fn from_columns(
                 names
                     .iter()
                     .position(|n| *n == c)
-                    .map_or(Cell::Text(""), |k| cell(&columns[k], i))
+                    .map_or(Cell::Text(""), |k| {
+                        columns[k].cell(i).unwrap_or(Cell::Text(""))
+                    })
             };
             row_plot(name, layout, i as u64 + 2, &mut last_t, cell)
         })

@@ -42,7 +42,7 @@ pub use config::{MAX_GRID_STEPS, ScoreConfig, Scorer};
 pub use error::ScoreError;
 pub use input::{TrackHistory, TrackRow, TruthPath, TruthSample};
 pub use read::{
-    Column, read_tracks, read_tracks_columns, read_tracks_from, read_truth, read_truth_columns,
-    read_truth_from,
+    Cell, Column, read_tracks, read_tracks_columns, read_tracks_from, read_truth,
+    read_truth_columns, read_truth_from,
 };
 pub use report::{GridPoint, Score, Summary, TruthScore};

@@ -19,7 +19,7 @@ use std::collections::HashMap;
 use std::io::Read;
 use std::path::Path;
 
-pub use table::Column;
+pub use table::{Cell, Column};
 use table::{Columns, Csv, Source, Table};
 
 use crate::error::ScoreError;

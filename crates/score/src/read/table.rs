@@ -18,7 +18,17 @@ pub enum Column<'a> {
     Text(&'a [String]),
 }
 
-impl Column<'_> {
+impl<'a> Column<'a> {
+    /// Row `i`'s cell (text trimmed, as a CSV reader trims it); `None` past the end.
+    #[must_use]
+    pub fn cell(&self, i: usize) -> Option<Cell<'a>> {
+        Some(match *self {
+            Self::Float(v) => Cell::Float(*v.get(i)?),
+            Self::Int(v) => Cell::Int(*v.get(i)?),
+            Self::Text(v) => Cell::Text(v.get(i)?.trim()),
+        })
+    }
+
     /// The number of values.
     #[must_use]
     pub fn len(&self) -> usize {
@@ -36,11 +46,37 @@ impl Column<'_> {
     }
 }
 
-/// One cell: text as read from a file, or a value of a column in memory.
-pub(super) enum Cell<'a> {
+/// One cell of a table: a CSV field's text, or a value of a column in memory.
+#[derive(Debug, Clone, Copy)]
+pub enum Cell<'a> {
+    /// A field's text.
     Text(&'a str),
+    /// A value of a [`Column::Float`].
     Float(f64),
+    /// A value of a [`Column::Int`].
     Int(i64),
+}
+
+impl Cell<'_> {
+    /// Whether it holds a value (an empty or blank CSV field holds none).
+    #[must_use]
+    pub fn is_given(self) -> bool {
+        match self {
+            Self::Text(raw) => !raw.trim().is_empty(),
+            Self::Float(_) | Self::Int(_) => true,
+        }
+    }
+}
+
+/// The cell as text: a field as it is, a value as `{}` writes it.
+impl std::fmt::Display for Cell<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Text(raw) => f.write_str(raw),
+            Self::Float(v) => write!(f, "{v}"),
+            Self::Int(i) => write!(f, "{i}"),
+        }
+    }
 }
 
 /// Where a table's header and rows come from.
@@ -171,12 +207,7 @@ impl Source for Columns<'_> {
     }
 
     fn cell(&self, i: usize) -> Option<Cell<'_>> {
-        let row = self.next.checked_sub(1)?;
-        Some(match self.columns.get(i)? {
-            Column::Float(v) => Cell::Float(*v.get(row)?),
-            Column::Int(v) => Cell::Int(*v.get(row)?),
-            Column::Text(v) => Cell::Text(v.get(row)?.trim()),
-        })
+        self.columns.get(i)?.cell(self.next.checked_sub(1)?)
     }
 }
 
@@ -253,8 +284,7 @@ impl<'a, S: Source> Table<'a, S> {
     pub(super) fn optional(&self, col: usize) -> Option<Cow<'_, str>> {
         self.cell(col).map(|c| match c {
             Cell::Text(s) => Cow::Borrowed(s),
-            Cell::Float(v) => Cow::Owned(v.to_string()),
-            Cell::Int(v) => Cow::Owned(v.to_string()),
+            value => Cow::Owned(value.to_string()),
         })
     }
 
