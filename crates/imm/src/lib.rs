@@ -80,7 +80,7 @@ pub use evidence::{EvidenceEstimate, EvidenceNoiseImm};
 pub use imm::{Imm, ImmEstimate, ImmPrediction, ImmUpdate, moment_match};
 pub use markov::{MarkovMatrix, PROBABILITY_SUM_TOL, log_probabilities, log_sum_exp};
 pub use multi::{MultiImm, MultiImmEstimate, MultiImmUpdate, NoiseGrid};
-pub use planar::{MAX_PLANAR_MODES, PlanarImm, markov_rows, planar_filters};
+pub use planar::{MAX_PLANAR_MODES, PlanarImm, markov_rows, per_mode, planar_filters};
 pub use polar::{
     NoiseVariances, PlotConversion, PositionMeasurement, UnbiasedConversion, unbiased_conversion,
 };

@@ -38,6 +38,14 @@ pub fn planar_filters<const R: usize>(
         .map_err(|_| count_mismatch())
 }
 
+/// One value per mode (initial mode probabilities, a row of the Markov matrix), `R` of them.
+///
+/// # Errors
+/// [`ImmError::Empty`] when `values` has not `R` entries.
+pub fn per_mode<const R: usize>(values: &[f64]) -> Result<[f64; R], ImmError> {
+    <[f64; R]>::try_from(values).map_err(|_| count_mismatch())
+}
+
 /// The Markov matrix of `rows` (`R` rows of `R` entries, "from" by rows).
 ///
 /// # Errors
@@ -45,9 +53,8 @@ pub fn planar_filters<const R: usize>(
 pub fn markov_rows<const R: usize>(rows: &[Vec<f64>]) -> Result<MarkovMatrix<R>, ImmError> {
     let rows = rows
         .iter()
-        .map(|r| <[f64; R]>::try_from(r.as_slice()))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|_| count_mismatch())?;
+        .map(|r| per_mode::<R>(r))
+        .collect::<Result<Vec<_>, _>>()?;
     let rows: [[f64; R]; R] = rows.try_into().map_err(|_| count_mismatch())?;
     MarkovMatrix::new(rows)
 }
@@ -118,5 +125,10 @@ mod tests {
         assert!(markov_rows::<2>(&[vec![0.9, 0.1], vec![0.1]]).is_err());
         assert!(markov_rows::<2>(&[vec![0.9, 0.2], vec![0.1, 0.9]]).is_err());
         assert!(markov_rows::<2>(&[vec![0.9, 0.1], vec![0.1, 0.9]]).is_ok());
+        assert!(per_mode::<3>(&[0.5, 0.5]).is_err());
+        assert_eq!(
+            per_mode::<2>(&[0.25, 0.75]).unwrap().map(f64::to_bits),
+            [0.25_f64, 0.75].map(f64::to_bits)
+        );
     }
 }

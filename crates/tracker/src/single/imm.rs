@@ -20,8 +20,8 @@
 use argus_core_math::Gaussian;
 use argus_filters::two_point_cv2;
 use argus_imm::{
-    Imm, ImmError, ImmEstimate, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlanarImm,
-    UnbiasedConversion, markov_rows, planar_filters,
+    Imm, ImmEstimate, MultiImm, MultiImmEstimate, NoiseGrid, NoiseVariances, PlanarImm,
+    UnbiasedConversion, markov_rows, per_mode, planar_filters,
 };
 use argus_sensors::Measurement;
 
@@ -67,13 +67,6 @@ pub(super) fn multi_imm(
     by_modes!(spec.models.len(), track_multi, ctx, spec, multi, plots)
 }
 
-/// A mode count other than `R`.
-fn count_mismatch() -> ImmError {
-    ImmError::Empty {
-        what: "IMM modes (count mismatch)",
-    }
-}
-
 /// The IMM of `spec` with `R` modes (`R = spec.models.len()`), Kalman filters on converted
 /// plots.
 ///
@@ -91,7 +84,7 @@ fn start_estimate<const R: usize>(
     spec: &ImmSpec,
     g: Gaussian<4>,
 ) -> Result<ImmEstimate<4, R>, SingleError> {
-    let mu = <[f64; R]>::try_from(spec.initial.as_slice()).map_err(|_| count_mismatch())?;
+    let mu = per_mode::<R>(&spec.initial)?;
     Ok(ImmEstimate::from_common(g, mu)?)
 }
 
