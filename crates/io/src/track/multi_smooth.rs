@@ -11,41 +11,19 @@
 
 use std::collections::BTreeMap;
 
-use crate::rows::{Column, Point, TrackRows};
-use argus_core_math::Gaussian;
-use argus_imm::NoiseVariances;
+use crate::rows::{Column, TrackRows};
 use argus_tracker::smooth::{FilteredRow, SmoothedRow, Smoothing, TrackSmoother};
-use argus_tracker::{
-    DeletionReason, EstimatorState, ModeProbabilities, SensorId, TrackSnapshot, TrackStatus,
-    TrackerConfig,
-};
+use argus_tracker::{SensorId, TrackSnapshot, TrackStatus, TrackerConfig};
 
-use super::names::{reason_name, status_name};
 use super::smooth::SmoothFailure as _;
+use super::tally::push_track;
 use crate::IoError;
 
-/// One row as the tracker gave it.
-#[derive(Debug, Clone)]
-struct Row {
-    sensor: u32,
-    track: u64,
-    status: TrackStatus,
-    reason: Option<DeletionReason>,
-    time: f64,
-    estimate: Gaussian<4>,
-    modes: Option<ModeProbabilities>,
-    noise: Option<NoiseVariances>,
-    score: f64,
-    /// The estimator state (the IMMs' modes), for the smoother.
-    state: EstimatorState,
-    /// The aircraft IMM's turn rate and its σ (rad/s).
-    turn_rate: Option<(f64, f64)>,
-}
-
-/// The rows of a run kept for smoothing, and the tracks' smoother.
+/// The rows of a run kept for smoothing (each track's snapshot with the sensor of its
+/// scan), and the tracks' smoother.
 #[derive(Debug)]
 pub(super) struct Recorded {
-    rows: Vec<Row>,
+    rows: Vec<(SensorId, TrackSnapshot)>,
     smoother: TrackSmoother,
 }
 
@@ -70,22 +48,7 @@ impl Recorded {
 
     /// Keeps the row of `track` from the scan of `sensor`.
     pub(super) fn push(&mut self, sensor: SensorId, track: TrackSnapshot) {
-        let modes = track.mode_probabilities();
-        let noise = track.noise_estimate();
-        let turn_rate = track.turn_rate();
-        self.rows.push(Row {
-            sensor: sensor.0,
-            track: track.id.0,
-            status: track.status,
-            reason: track.deletion,
-            time: track.time,
-            estimate: track.estimate,
-            modes,
-            noise,
-            score: track.score,
-            state: track.state,
-            turn_rate,
-        });
+        self.rows.push((sensor, track));
     }
 
     /// Smooths every track confirmed at some scan and writes every row, in order, to
@@ -97,28 +60,28 @@ impl Recorded {
     pub(super) fn smooth_into(self, how: Smoothing, out: &mut TrackRows) -> Result<usize, IoError> {
         let rows = self.rows;
         let mut by_track: BTreeMap<u64, Vec<usize>> = BTreeMap::new();
-        for (i, r) in rows.iter().enumerate() {
-            by_track.entry(r.track).or_default().push(i);
+        for (i, (_, r)) in rows.iter().enumerate() {
+            by_track.entry(r.id.0).or_default().push(i);
         }
         let mut smoothed: Vec<Option<SmoothedRow>> = vec![None; rows.len()];
         let mut count = 0;
         for (id, idx) in by_track {
             if !idx
                 .iter()
-                .any(|&i| rows[i].status == TrackStatus::Confirmed)
+                .any(|&i| rows[i].1.status == TrackStatus::Confirmed)
             {
                 continue;
             }
             let live: Vec<usize> = idx
                 .into_iter()
-                .filter(|&i| rows[i].status != TrackStatus::Deleted)
+                .filter(|&i| rows[i].1.status != TrackStatus::Deleted)
                 .collect();
             let filtered: Vec<FilteredRow<'_>> = live
                 .iter()
                 .map(|&i| FilteredRow {
-                    time: rows[i].time,
-                    estimate: &rows[i].estimate,
-                    state: &rows[i].state,
+                    time: rows[i].1.time,
+                    estimate: &rows[i].1.estimate,
+                    state: &rows[i].1.state,
                 })
                 .collect();
             let s = self
@@ -130,17 +93,8 @@ impl Recorded {
             }
             count += 1;
         }
-        for (r, s) in rows.iter().zip(&smoothed) {
-            let reason = r.reason.map_or("", reason_name);
-            let p = Point::new(r.time, &r.estimate)
-                .of_track(r.sensor, r.track, status_name(r.status), reason)
-                .modes(r.modes.as_ref().map(|m| m.as_slice()))
-                .noise(r.noise)
-                .turn_rate(r.turn_rate)
-                .score(r.score)
-                .smoothed(s.as_ref().map(|s| &s.estimate))
-                .smoothed_modes(s.as_ref().and_then(|s| s.modes.as_deref()));
-            out.push(&p);
+        for ((sensor, track), s) in rows.iter().zip(&smoothed) {
+            push_track(out, *sensor, track, s.as_ref());
         }
         Ok(count)
     }

@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 
 use crate::rows::{Point, TrackRows};
+use argus_tracker::smooth::SmoothedRow;
 use argus_tracker::{Concluded, DeletionReason, SensorId, TrackSnapshot, TrackStatus};
 
 use super::multi_smooth::Recorded;
@@ -103,6 +104,17 @@ pub(super) fn row(
         rec.push(sensor, track);
         return;
     }
+    push_track(out, sensor, &track, None);
+}
+
+/// Writes the row of `track` from the scan of `sensor`, with its smoothed values when
+/// it was smoothed (empty smoothed cells otherwise).
+pub(super) fn push_track(
+    out: &mut TrackRows,
+    sensor: SensorId,
+    track: &TrackSnapshot,
+    smoothed: Option<&SmoothedRow>,
+) {
     let reason = track.deletion.map_or("", reason_name);
     let mu = track.mode_probabilities();
     let p = Point::new(track.time, &track.estimate)
@@ -110,6 +122,8 @@ pub(super) fn row(
         .modes(mu.as_ref().map(|m| m.as_slice()))
         .noise(track.noise_estimate())
         .turn_rate(track.turn_rate())
-        .score(track.score);
+        .score(track.score)
+        .smoothed(smoothed.map(|s| &s.estimate))
+        .smoothed_modes(smoothed.and_then(|s| s.modes.as_deref()));
     out.push(&p);
 }
